@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages the build and tests need, only those missing.
+# Usage: scripts/deps.sh [--tests]   (--tests adds the test/benchmark-only packages)
+set -euo pipefail
+packages=(g++ cmake make
+          libeigen3-dev libcgal-dev libgmsh-dev libsuitesparse-dev libopenblas-dev
+          libvtk9-dev libtomlplusplus-dev libcli11-dev
+          libgtest-dev libgmock-dev libbenchmark-dev)
+if [ "${1:-}" = "--tests" ]; then
+  packages+=(clang-format-14)
+fi
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [ "$status" = "install ok installed" ] || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+echo "deps: installing ${missing[*]}"
+run_as_root=()
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo > /dev/null; then run_as_root=(sudo); else
+    echo "deps: missing packages ${missing[*]}; run as root: apt-get install -y --no-install-recommends ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${run_as_root[@]}" apt-get update -qq
+"${run_as_root[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" > /dev/null
+echo "deps: installed ${#missing[@]} packages"

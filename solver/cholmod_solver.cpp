@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: MIT
+#include "solver/cholmod_solver.hpp"
+
+#include "mesh/error.hpp"
+
+#include <cholmod.h>
+
+#include <cstring>
+#include <string>
+
+namespace nmm {
+
+const char* to_string(SolveStatus status) {
+  switch (status) {
+  case SolveStatus::ok:
+    return "ok";
+  case SolveStatus::not_positive_definite:
+    return "matrix not positive definite";
+  case SolveStatus::failed:
+    return "linear solver failed";
+  }
+  return "unknown";
+}
+
+struct CholmodSolver::Impl {
+  cholmod_common common{};
+  cholmod_factor* factor = nullptr;
+  cholmod_dense* solution = nullptr; // solve2 workspaces, reused across solves
+  cholmod_dense* work_y = nullptr;
+  cholmod_dense* work_e = nullptr;
+  long n = -1;
+  long failed_column = -1;
+  SolverCounters counters;
+
+  Impl() {
+    cholmod_start(&common);
+    common.supernodal = CHOLMOD_SUPERNODAL;
+    common.print = 0;
+    common.error_handler = nullptr; // errors come back through common.status
+  }
+  ~Impl() {
+    cholmod_free_factor(&factor, &common);
+    cholmod_free_dense(&solution, &common);
+    cholmod_free_dense(&work_y, &common);
+    cholmod_free_dense(&work_e, &common);
+    cholmod_finish(&common);
+  }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+  Impl(Impl&&) = delete;
+  Impl& operator=(Impl&&) = delete;
+
+  // A non-owning CHOLMOD view of an Eigen matrix: stype = 1, only the upper triangle read.
+  static cholmod_sparse view(const SparseMatrix& matrix) {
+    cholmod_sparse a{};
+    a.nrow = static_cast<std::size_t>(matrix.rows());
+    a.ncol = static_cast<std::size_t>(matrix.cols());
+    a.nzmax = static_cast<std::size_t>(matrix.nonZeros());
+    // CHOLMOD's C interface takes non-const pointers but does not write through them here.
+    a.p = const_cast<int*>(matrix.outerIndexPtr()); // NOLINT(cppcoreguidelines-pro-type-const-cast)
+    a.i = const_cast<int*>(matrix.innerIndexPtr()); // NOLINT(cppcoreguidelines-pro-type-const-cast)
+    a.x = const_cast<double*>(matrix.valuePtr());   // NOLINT(cppcoreguidelines-pro-type-const-cast)
+    a.stype = 1;
+    a.itype = CHOLMOD_INT;
+    a.xtype = CHOLMOD_REAL;
+    a.dtype = CHOLMOD_DOUBLE;
+    a.sorted = 1;
+    a.packed = 1;
+    return a;
+  }
+};
+
+CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
+CholmodSolver::~CholmodSolver() = default;
+
+SolveStatus CholmodSolver::analyze(const SparseMatrix& matrix) {
+  NMM_ASSERT(matrix.rows() == matrix.cols(), "CHOLMOD needs a square matrix");
+  NMM_ASSERT(matrix.isCompressed(), "CHOLMOD needs a compressed matrix");
+  cholmod_free_factor(&impl_->factor, &impl_->common);
+  cholmod_sparse a = Impl::view(matrix);
+  impl_->factor = cholmod_analyze(&a, &impl_->common);
+  if (impl_->factor == nullptr || impl_->common.status < CHOLMOD_OK)
+    return SolveStatus::failed;
+  impl_->n = matrix.rows();
+  ++impl_->counters.symbolic_analyses;
+  return SolveStatus::ok;
+}
+
+SolveStatus CholmodSolver::factorize(const SparseMatrix& matrix) {
+  if (impl_->factor == nullptr || matrix.rows() != impl_->n)
+    return SolveStatus::failed;
+  cholmod_sparse a = Impl::view(matrix);
+  const int ok = cholmod_factorize(&a, impl_->factor, &impl_->common);
+  impl_->failed_column = -1;
+  if (impl_->common.status == CHOLMOD_NOT_POSDEF ||
+      (ok != 0 && impl_->factor->minor < impl_->factor->n)) {
+    impl_->failed_column = static_cast<long>(impl_->factor->minor);
+    return SolveStatus::not_positive_definite;
+  }
+  if (ok == 0 || impl_->common.status < CHOLMOD_OK)
+    return SolveStatus::failed;
+  ++impl_->counters.factorizations;
+  return SolveStatus::ok;
+}
+
+SolveStatus CholmodSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& solution) {
+  if (impl_->factor == nullptr || rhs.size() != impl_->n || impl_->failed_column >= 0) {
+    return SolveStatus::failed;
+  }
+  cholmod_dense b{};
+  b.nrow = static_cast<std::size_t>(rhs.size());
+  b.ncol = 1;
+  b.nzmax = b.nrow;
+  b.d = b.nrow;
+  b.x = const_cast<double*>(rhs.data()); // NOLINT(cppcoreguidelines-pro-type-const-cast)
+  b.xtype = CHOLMOD_REAL;
+  b.dtype = CHOLMOD_DOUBLE;
+  const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &b, nullptr, &impl_->solution, nullptr,
+                                &impl_->work_y, &impl_->work_e, &impl_->common);
+  if (ok == 0 || impl_->solution == nullptr)
+    return SolveStatus::failed;
+  solution.resize(rhs.size());
+  std::memcpy(solution.data(), impl_->solution->x,
+              static_cast<std::size_t>(rhs.size()) * sizeof(double));
+  ++impl_->counters.solves;
+  return SolveStatus::ok;
+}
+
+const SolverCounters& CholmodSolver::counters() const { return impl_->counters; }
+
+std::string CholmodSolver::name() const { return cholmod_version() + " supernodal"; }
+
+long CholmodSolver::failed_column() const { return impl_->failed_column; }
+
+std::string cholmod_version() {
+  return "CHOLMOD " + std::to_string(CHOLMOD_MAIN_VERSION) + "." +
+         std::to_string(CHOLMOD_SUB_VERSION) + "." + std::to_string(CHOLMOD_SUBSUB_VERSION);
+}
+
+} // namespace nmm

@@ -1,0 +1,20 @@
+// SPDX-License-Identifier: MIT
+// solver/threads.hpp — thread counts of the parallel libraries under the linear solver.
+#pragma once
+
+#include <string>
+
+namespace nmm {
+
+/// Cores this process may really use: the CPU affinity mask, further limited by a cgroup
+/// CPU quota when one is set (a container may see more CPUs than it may run on).
+[[nodiscard]] int available_cores();
+
+/// Caps OpenMP (CHOLMOD) and OpenBLAS to @p n threads. Uncapped, Debian's CHOLMOD runs 3-5x
+/// slower on this 2-core machine kind (DESIGN.md "Measured facts"). @pre n >= 1.
+void limit_threads(int n);
+
+/// The BLAS actually linked, e.g. "OpenBLAS 0.3.21 ... (2 threads)".
+[[nodiscard]] std::string blas_description();
+
+} // namespace nmm

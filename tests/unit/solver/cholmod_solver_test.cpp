@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: MIT
+#include "solver/cholmod_solver.hpp"
+#include "solver/threads.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+namespace nmm {
+namespace {
+
+// 5-point Laplacian on an n x n grid plus `shift` on the diagonal, full symmetric storage.
+SparseMatrix laplacian(int n, double shift) {
+  std::vector<Eigen::Triplet<double>> entries;
+  auto id = [n](int i, int j) { return i * n + j; };
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      entries.emplace_back(id(i, j), id(i, j), 4.0 + shift);
+      if (i + 1 < n) {
+        entries.emplace_back(id(i, j), id(i + 1, j), -1.0);
+        entries.emplace_back(id(i + 1, j), id(i, j), -1.0);
+      }
+      if (j + 1 < n) {
+        entries.emplace_back(id(i, j), id(i, j + 1), -1.0);
+        entries.emplace_back(id(i, j + 1), id(i, j), -1.0);
+      }
+    }
+  }
+  SparseMatrix a(n * n, n * n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  a.makeCompressed();
+  return a;
+}
+
+TEST(CholmodSolver, SolvesSpdSystemLikeEigenLdlt) {
+  const SparseMatrix a = laplacian(40, 0.0);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
+  CholmodSolver solver;
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd x;
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  const Eigen::SimplicialLDLT<SparseMatrix> reference(a);
+  const Eigen::VectorXd expected = reference.solve(rhs);
+  // Condition number of this Laplacian is ~700: 1e-12 relative is far above rounding.
+  EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_LT((a * x - rhs).norm(), 1e-12 * rhs.norm());
+}
+
+TEST(CholmodSolver, ReadsOnlyTheUpperTriangle) {
+  const SparseMatrix full = laplacian(10, 0.5);
+  const SparseMatrix upper = full.triangularView<Eigen::Upper>();
+  const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(full.rows());
+  CholmodSolver solver;
+  ASSERT_EQ(solver.analyze(upper), SolveStatus::ok);
+  ASSERT_EQ(solver.factorize(upper), SolveStatus::ok);
+  Eigen::VectorXd x;
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  EXPECT_LT((full * x - rhs).norm(), 1e-13 * rhs.norm());
+}
+
+TEST(CholmodSolver, RefactorizesNewValuesWithoutNewAnalysis) {
+  CholmodSolver solver;
+  const SparseMatrix first = laplacian(20, 0.0);
+  ASSERT_EQ(solver.analyze(first), SolveStatus::ok);
+  Eigen::VectorXd x;
+  const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(first.rows());
+  for (double shift : {0.0, 1.0, 10.0}) {
+    const SparseMatrix a = laplacian(20, shift);
+    ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+    ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+    EXPECT_LT((a * x - rhs).norm(), 1e-12 * rhs.norm());
+  }
+  EXPECT_EQ(solver.counters().symbolic_analyses, 1);
+  EXPECT_EQ(solver.counters().factorizations, 3);
+  EXPECT_EQ(solver.counters().solves, 3);
+}
+
+TEST(CholmodSolver, ReportsIndefiniteMatrixAsStatus) {
+  // Shift -4 leaves the Laplacian's negative eigenvalues: a pivot fails.
+  const SparseMatrix a = laplacian(6, -4.0);
+  CholmodSolver solver;
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  EXPECT_EQ(solver.factorize(a), SolveStatus::not_positive_definite);
+  EXPECT_GE(solver.failed_column(), 0);
+  Eigen::VectorXd x;
+  EXPECT_EQ(solver.solve(Eigen::VectorXd::Ones(a.rows()), x), SolveStatus::failed);
+}
+
+TEST(CholmodSolver, FactorizeBeforeAnalyzeFails) {
+  CholmodSolver solver;
+  EXPECT_EQ(solver.factorize(laplacian(3, 0.0)), SolveStatus::failed);
+}
+
+TEST(Threads, CapsAtUsableCoresAndLinksOpenBlas) {
+  const int cores = available_cores();
+  EXPECT_GE(cores, 1);
+  limit_threads(cores);
+  const std::string blas = blas_description();
+  EXPECT_NE(blas.find("OpenBLAS"), std::string::npos) << blas;
+  std::string threads = "(";
+  threads += std::to_string(cores);
+  threads += " threads)";
+  EXPECT_NE(blas.find(threads), std::string::npos) << blas;
+}
+
+} // namespace
+} // namespace nmm
