@@ -22,10 +22,13 @@ struct Cover {
   int block = -1;
   /// Area of the cover's support (the sum of its elements' areas), m².
   double area = 0.0;
-  /// The cover whose unknowns this cover uses: itself, or, for a cover too small to carry
-  /// its own unknowns (the tiny-cover rule of docs/cover-mesher.md), a larger cover of the
-  /// same block sharing an element with it. Always an owner of itself (no chains).
-  int dof_owner = -1;
+  /// -1 when the cover carries its own unknowns. Otherwise the cover is too small to carry
+  /// them (its support is below CoverMesherOptions::min_cover_area_ratio of its math star):
+  /// its cover function is the extension of the displacement field of this element, a
+  /// well-posed element of the same block near the cover's node (docs/cover-mesher.md,
+  /// "Tiny covers"). Extending the field, rather than tying the cover to a neighbour,
+  /// keeps every polynomial the cover functions can represent, so patch tests stay exact.
+  int extension_element = -1;
   /// Elements in which this cover is one of the three covers.
   std::vector<int> elements;
 };
@@ -52,7 +55,8 @@ struct Element {
 /// One edge of a boundary loop: from loop.vertices[k] to loop.vertices[k + 1] (cyclically),
 /// with the material on its left.
 struct BoundaryEdge {
-  /// The element whose displacement field holds along this edge.
+  /// The element whose displacement field holds along this edge; -1 on the boundary of a
+  /// `dda`/`vem` block, where the block itself is the element.
   int element = -1;
   /// The named curve (PhysicalMesh::curves index) of the joint this edge is a face of, or
   /// -1 for a free boundary (material on one side only, not a joint).
@@ -74,13 +78,17 @@ struct BoundaryLoop {
   [[nodiscard]] int n_vertices() const noexcept { return static_cast<int>(vertices.size()); }
 };
 
-/// A piece of a named curve inside one math triangle, with the elements on either side.
+/// A piece of a named curve inside one math triangle (or along one block edge), with what
+/// lies on either side.
 struct CurvePiece {
   Point2 a;
   Point2 b;
-  /// Element on the left of a -> b (-1 if void), and on the right (-1 if void).
+  /// Element on the left of a -> b and on the right; -1 if void or in a `dda`/`vem` block.
   int left_element = -1;
   int right_element = -1;
+  /// Block on the left and on the right, -1 if void.
+  int left_block = -1;
+  int right_block = -1;
 };
 
 /// A block: a connected piece of material bounded by joints and boundaries (a partial joint
@@ -101,8 +109,8 @@ struct CoverMesherStats {
   int math_triangles = 0;
   int cut_triangles = 0;  ///< triangles that went through a local arrangement
   int physical_edges = 0; ///< edges of the global arrangement of physical lines
-  int tiny_atoms_dropped = 0;
-  int tiny_covers_merged = 0;
+  int tiny_atoms = 0;     ///< atoms below 1e-12 of their triangle (kept; reported)
+  int tiny_covers = 0;    ///< covers given an extension element
   double seconds_physical_arrangement = 0.0; ///< global arrangement + face labels
   double seconds_cut_triangles = 0.0;        ///< local arrangements of cut triangles
   double seconds_rest = 0.0;                 ///< covers, elements, blocks, loops

@@ -15,6 +15,15 @@ void BoundingBox::extend(const Point2& p) {
   max = max.cwiseMax(p);
 }
 
+void CompensatedSum::add(double value) noexcept {
+  const double t = sum_ + value;
+  if (std::abs(sum_) >= std::abs(value))
+    compensation_ += (sum_ - t) + value;
+  else
+    compensation_ += (value - t) + sum_;
+  sum_ = t;
+}
+
 double signed_area(std::span<const Point2> loop) {
   if (loop.size() < 3)
     return 0.0;

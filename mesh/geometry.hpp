@@ -45,6 +45,23 @@ struct BoundingBox {
 /// Area of a polygon with holes: |outer| - sum |hole|, whatever the loop orientations.
 [[nodiscard]] double area(const Polygon& polygon);
 
+/// Neumaier's compensated summation: the sum of many terms to about one rounding error of
+/// the result. Why: 1.5e5 element areas summed naively drift by 1e-12 relative, which would
+/// hide a real tiling error of that size.
+class CompensatedSum {
+public:
+  void add(double value) noexcept;
+  CompensatedSum& operator+=(double value) noexcept {
+    add(value);
+    return *this;
+  }
+  [[nodiscard]] double value() const noexcept { return sum_ + compensation_; }
+
+private:
+  double sum_ = 0.0;
+  double compensation_ = 0.0;
+};
+
 /// Smallest box holding every vertex of @p points.
 [[nodiscard]] BoundingBox bounding_box(std::span<const Point2> points);
 

@@ -113,12 +113,12 @@ BoundingBox material_bounding_box(const PhysicalMesh& physical) {
 }
 
 double material_area(const PhysicalMesh& physical) {
-  double total = 0.0;
+  CompensatedSum total;
   for (const MaterialRegion& region : physical.regions) {
     for (const Polygon& polygon : region.polygons)
       total += area(polygon);
   }
-  return total;
+  return total.value();
 }
 
 void validate_physical_mesh(PhysicalMesh& physical) {
