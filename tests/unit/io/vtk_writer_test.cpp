@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Every file is read back with VTK's own XML readers (and the .pvd with VTK's XML parser).
+#include "io/cover_mesh_output.hpp"
 #include "io/vtk_writer.hpp"
 #include "mesh/error.hpp"
 
@@ -598,6 +599,131 @@ TEST_F(VtkWriterTest, PvdInAMissingDirectoryIsAnInputErrorAndListsNothing) {
   PvdSeries series(missing / "case.pvd");
   expect_input_error_naming(missing, [&] { series.add(0.0, missing / "step_000000.vtu"); });
   EXPECT_TRUE(series.entries().empty());
+}
+
+// ---------------------------------------------------------------------------------------
+// Cover mesher output
+
+/// Three elements: a plain triangle, an element of two atoms (a quadrilateral and a
+/// triangle, cut by a joint through its triangle), and an element with a hole.
+CoverSystem small_cover_system() {
+  CoverSystem covers;
+  Element plain;
+  plain.triangle = 0;
+  plain.covers = {0, 1, 2};
+  plain.material = 0;
+  plain.block = 0;
+  plain.polygons = {Polygon{{{0, 0}, {2, 0}, {0, 2}}, {}}};
+  plain.area = 2.0;
+  Element cut;
+  cut.triangle = 1;
+  cut.covers = {3, 4, 5};
+  cut.material = 1;
+  cut.block = 1;
+  cut.polygons = {Polygon{{{2, 0}, {3, 0}, {2.5, 1}, {1.5, 1}}, {}},
+                  Polygon{{{1, 2}, {1.5, 1.5}, {1.25, 2}}, {}}};
+  cut.area = area(cut.polygons[0]) + area(cut.polygons[1]);
+  Element holed;
+  holed.triangle = 2;
+  holed.covers = {6, 7, 8};
+  holed.material = 0;
+  holed.block = 2;
+  holed.polygons = {Polygon{{{10, 0}, {20, 0}, {10, 10}}, {{{12, 2}, {14, 2}, {12, 4}}}}};
+  holed.area = area(holed.polygons[0]);
+  covers.elements = {plain, cut, holed};
+  return covers;
+}
+
+TEST_F(VtkWriterTest, CoverMeshHasOneCellPerAtomWithItsElementsData) {
+  const CoverSystem covers = small_cover_system();
+  const fs::path file = dir_ / "mesh.vtu";
+  write_cover_mesh_vtu(file, covers);
+
+  const auto grid = read_vtu(file);
+  ASSERT_EQ(grid->GetNumberOfCells(), 4);
+  EXPECT_EQ(grid->GetNumberOfPoints(), 3 + 4 + 3 + 6);
+  vtkCellData* cells = grid->GetCellData();
+  expect_array(cells, "element", 1, {0, 1, 1, 2}, true);
+  expect_array(cells, "triangle", 1, {0, 1, 1, 2}, true);
+  expect_array(cells, "covers", 3, {0, 1, 2, 3, 4, 5, 3, 4, 5, 6, 7, 8}, true);
+  expect_array(cells, "material", 1, {0, 1, 1, 0}, true);
+  expect_array(cells, "block", 1, {0, 1, 1, 2}, true);
+  expect_array(cells, "n_atoms", 1, {1, 2, 2, 1}, true);
+  const double cut_area = covers.elements[1].area;
+  expect_array(cells, "area", 1, {2.0, cut_area, cut_area, 48.0}, false);
+  EXPECT_EQ(grid->GetCellType(0), VTK_TRIANGLE);
+  EXPECT_EQ(grid->GetCellType(1), VTK_POLYGON);
+  EXPECT_EQ(grid->GetCellType(3), VTK_POLYGON);
+  // Each written polygon has the area of its atom; the holed one is a keyhole.
+  const std::vector<double> atom_areas{2.0, area(covers.elements[1].polygons[0]),
+                                       area(covers.elements[1].polygons[1]), 48.0};
+  for (vtkIdType c = 0; c < 4; ++c)
+    EXPECT_NEAR(signed_area(cell_points(grid, c)), atom_areas[static_cast<std::size_t>(c)], 1e-12);
+  EXPECT_EQ(cell_points(grid, 3).size(), 3U + 3U + 2U);
+}
+
+TEST_F(VtkWriterTest, MathMeshHasTrianglesNodeIdsAndCoverCounts) {
+  MathMesh mesh;
+  mesh.nodes = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  CoverSystem covers;
+  covers.node_covers = {{0}, {1, 2}, {}, {3}};
+
+  write_math_mesh_vtu(dir_ / "math_mesh.vtu", mesh, &covers);
+  const auto grid = read_vtu(dir_ / "math_mesh.vtu");
+  ASSERT_EQ(grid->GetNumberOfCells(), 2);
+  ASSERT_EQ(grid->GetNumberOfPoints(), 4);
+  EXPECT_EQ(grid->GetCellType(0), VTK_TRIANGLE);
+  EXPECT_EQ(grid->GetCellType(1), VTK_TRIANGLE);
+  vtkNew<vtkIdList> ids;
+  grid->GetCellPoints(1, ids);
+  ASSERT_EQ(ids->GetNumberOfIds(), 3);
+  EXPECT_EQ(ids->GetId(0), 0);
+  EXPECT_EQ(ids->GetId(1), 2);
+  EXPECT_EQ(ids->GetId(2), 3);
+  expect_array(grid->GetCellData(), "triangle", 1, {0, 1}, true);
+  expect_array(grid->GetPointData(), "node", 1, {0, 1, 2, 3}, true);
+  expect_array(grid->GetPointData(), "n_covers", 1, {1, 2, 0, 1}, true);
+
+  write_math_mesh_vtu(dir_ / "bare.vtu", mesh);
+  const auto bare = read_vtu(dir_ / "bare.vtu");
+  EXPECT_EQ(bare->GetPointData()->GetArray("n_covers"), nullptr);
+  expect_array(bare->GetPointData(), "node", 1, {0, 1, 2, 3}, true);
+}
+
+TEST_F(VtkWriterTest, BoundaryLoopsBecomePolylinesSplitWhereTheJointChanges) {
+  CoverSystem covers;
+  BoundaryLoop square; // free boundary, then joint 3 along the top and left, then free
+  square.block = 5;
+  square.vertices = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  square.edges.resize(4);
+  square.edges[2].joint = 3;
+  square.edges[3].joint = 3;
+  BoundaryLoop hole; // all free: one closed polyline
+  hole.block = 5;
+  hole.vertices = {{0.4, 0.4}, {0.4, 0.6}, {0.6, 0.6}};
+  hole.edges.resize(3);
+  covers.loops = {square, hole};
+
+  write_boundary_vtp(dir_ / "boundary.vtp", covers);
+  const auto poly = read_vtp(dir_ / "boundary.vtp");
+  ASSERT_EQ(poly->GetNumberOfLines(), 3);
+  EXPECT_EQ(poly->GetNumberOfPoints(), 7);
+  expect_array(poly->GetCellData(), "block", 1, {5, 5, 5}, true);
+  expect_array(poly->GetCellData(), "joint", 1, {-1, 3, -1}, true);
+  expect_array(poly->GetCellData(), "loop", 1, {0, 0, 1}, true);
+  // Free run: (0,0) -> (1,0) -> (1,1); joint run: (1,1) -> (0,1) -> (0,0).
+  const std::vector<Point2> free_run = cell_points(poly, 0);
+  const std::vector<Point2> joint_run = cell_points(poly, 1);
+  ASSERT_EQ(joint_run.size(), 3U);
+  ASSERT_EQ(free_run.size(), 3U);
+  EXPECT_EQ(joint_run.front(), Point2(1, 1));
+  EXPECT_EQ(joint_run.back(), Point2(0, 0));
+  EXPECT_EQ(free_run.front(), Point2(0, 0));
+  EXPECT_EQ(free_run.back(), Point2(1, 1));
+  const std::vector<Point2> closed = cell_points(poly, 2);
+  ASSERT_EQ(closed.size(), 4U);
+  EXPECT_EQ(closed.front(), closed.back());
 }
 
 } // namespace
