@@ -36,7 +36,10 @@ add_library(nmm::gmsh INTERFACE IMPORTED)
 target_include_directories(nmm::gmsh SYSTEM INTERFACE "${NMM_GMSH_INCLUDE_DIR}")
 target_link_libraries(nmm::gmsh INTERFACE "${NMM_GMSH_LIBRARY}")
 
-find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML)
+# IOXMLParser and FiltersGeneral: the tests read .pvd files with VTK's XML parser and
+# triangulate written polygons as ParaView's Tetrahedralize filter does.
+find_package(VTK 9.1 REQUIRED COMPONENTS CommonCore CommonDataModel IOXML IOXMLParser
+                                         FiltersGeneral)
 find_package(tomlplusplus 3 REQUIRED)
 find_package(CLI11 2 REQUIRED)
 

@@ -1,0 +1,573 @@
+// SPDX-License-Identifier: MIT
+#include "io/vtk_writer.hpp"
+
+#include "mesh/error.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkTypeInt32Array.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <algorithm>
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+#include <system_error>
+#include <type_traits>
+#include <utility>
+
+namespace nmm {
+
+namespace fs = std::filesystem;
+
+// ----------------------------------------------------------------------------------------
+// DataArray, DataArrays
+
+std::size_t DataArray::n_values() const noexcept {
+  return std::visit([](const auto& v) { return v.size(); }, values);
+}
+
+std::size_t DataArray::n_tuples() const noexcept {
+  return n_components > 0 ? n_values() / static_cast<std::size_t>(n_components) : 0;
+}
+
+namespace {
+
+/// Checks a caller's promise in every build type. Why not NMM_ASSERT: a wrong array size or
+/// cell index would otherwise give a file that ParaView rejects or crashes on, long after
+/// the run, and the check costs nothing next to the file I/O.
+void require(bool condition, const std::string& message) {
+  if (!condition)
+    throw std::logic_error("vtk_writer: " + message);
+}
+
+} // namespace
+
+DataArrays& DataArrays::push(DataArray array) {
+  require(!array.name.empty(), "a data array needs a name");
+  require(array.n_components > 0,
+          "array '" + array.name + "' has " + std::to_string(array.n_components) + " components");
+  require(array.n_values() % static_cast<std::size_t>(array.n_components) == 0,
+          "array '" + array.name + "' has " + std::to_string(array.n_values()) +
+              " values, not a multiple of its " + std::to_string(array.n_components) +
+              " components");
+  require(find(array.name) == nullptr, "array name '" + array.name + "' used twice");
+  arrays_.push_back(std::move(array));
+  return *this;
+}
+
+DataArrays& DataArrays::add(std::string name, std::vector<double> values, int n_components) {
+  return push(DataArray{std::move(name), n_components, std::move(values)});
+}
+
+DataArrays& DataArrays::add(std::string name, std::vector<std::int32_t> values, int n_components) {
+  return push(DataArray{std::move(name), n_components, std::move(values)});
+}
+
+DataArrays& DataArrays::add_vectors(std::string name, std::span<const Point2> vectors) {
+  std::vector<double> values;
+  values.reserve(3 * vectors.size());
+  for (const Point2& v : vectors) {
+    values.push_back(v.x());
+    values.push_back(v.y());
+    values.push_back(0.0);
+  }
+  return add(std::move(name), std::move(values), 3);
+}
+
+DataArrays& DataArrays::add_value(std::string name, double value) {
+  return add(std::move(name), std::vector<double>{value}, 1);
+}
+
+const DataArray* DataArrays::find(std::string_view name) const noexcept {
+  const auto it = std::find_if(arrays_.begin(), arrays_.end(),
+                               [&](const DataArray& a) { return a.name == name; });
+  return it == arrays_.end() ? nullptr : &*it;
+}
+
+// ----------------------------------------------------------------------------------------
+// Planar predicates for the keyhole bridges and the fan start
+
+namespace {
+
+/// Twice the signed area of (o, a, b): > 0 when b lies left of the line o -> a.
+double cross(const Point2& o, const Point2& a, const Point2& b) {
+  const Point2 u = a - o;
+  const Point2 v = b - o;
+  return u.x() * v.y() - u.y() * v.x();
+}
+
+/// Sign of cross() with a relative tolerance, so that vertices split along a straight edge
+/// (boundary loops are split at every math edge) count as collinear despite rounding.
+int orientation(const Point2& o, const Point2& a, const Point2& b) {
+  const double c = cross(o, a, b);
+  const double scale = (a - o).norm() * (b - o).norm();
+  if (std::abs(c) <= 1e-12 * scale)
+    return 0;
+  return c > 0.0 ? 1 : -1;
+}
+
+/// For x collinear with p, q: true when x lies strictly between them.
+bool strictly_between(const Point2& p, const Point2& q, const Point2& x) {
+  return (x - p).dot(q - p) > 0.0 && (x - q).dot(p - q) > 0.0;
+}
+
+/// True when a segment leaving corner v (edges a -> v -> b, material on the left) towards t
+/// starts inside the material.
+bool opens_into(const Point2& a, const Point2& v, const Point2& b, const Point2& t) {
+  const bool left_of_in = orientation(a, v, t) > 0;
+  const bool left_of_out = orientation(v, b, t) > 0;
+  if (orientation(a, v, b) > 0)
+    return left_of_in && left_of_out; // convex corner: inside both half-planes
+  return left_of_in || left_of_out;   // reflex or straight corner
+}
+
+/// True when edge (a, b) is in the way of the bridge m -> v: it crosses it, a vertex lies on
+/// it, or a bridge end lies inside the edge. Edges merely ending at m or v do not block.
+bool blocks(const Point2& m, const Point2& v, const Point2& a, const Point2& b) {
+  const int o1 = orientation(m, v, a);
+  const int o2 = orientation(m, v, b);
+  const int o3 = orientation(a, b, m);
+  const int o4 = orientation(a, b, v);
+  if (o1 * o2 < 0 && o3 * o4 < 0)
+    return true;
+  const auto on_bridge = [&](const Point2& p, int o) {
+    return o == 0 && p != m && p != v && strictly_between(m, v, p);
+  };
+  const auto on_edge = [&](const Point2& p, int o) {
+    return o == 0 && p != a && p != b && strictly_between(a, b, p);
+  };
+  return on_bridge(a, o1) || on_bridge(b, o2) || on_edge(m, o3) || on_edge(v, o4);
+}
+
+double loop_signed_area(std::span<const Point2> points, const std::vector<int>& loop) {
+  std::vector<Point2> coordinates;
+  coordinates.reserve(loop.size());
+  for (const int i : loop)
+    coordinates.push_back(points[static_cast<std::size_t>(i)]);
+  return signed_area(coordinates);
+}
+
+void check_loop(std::span<const Point2> points, const std::vector<int>& loop, const char* what) {
+  require(loop.size() >= 3, std::string(what) + " loop with " + std::to_string(loop.size()) +
+                                " points (a polygon needs 3)");
+  for (const int i : loop)
+    require(i >= 0 && static_cast<std::size_t>(i) < points.size(),
+            "point index " + std::to_string(i) + " out of range (" + std::to_string(points.size()) +
+                " points)");
+}
+
+/// A copy of @p loop turning the requested way (counter-clockwise when @p ccw).
+std::vector<int> oriented(std::span<const Point2> points, std::vector<int> loop, bool ccw) {
+  if ((loop_signed_area(points, loop) > 0.0) != ccw)
+    std::reverse(loop.begin(), loop.end());
+  return loop;
+}
+
+/// The position in @p loop of a vertex from which the triangle fan covers the counter-
+/// clockwise loop exactly (no fan triangle turns clockwise: the vertex is in the kernel of
+/// the polygon), or 0 when there is none. ParaView draws polygons as such fans.
+std::size_t fan_start(std::span<const Point2> points, const std::vector<int>& loop) {
+  const std::size_t n = loop.size();
+  const auto at = [&](std::size_t k) -> const Point2& {
+    return points[static_cast<std::size_t>(loop[k % n])];
+  };
+  for (std::size_t s = 0; s < n; ++s) {
+    bool covers = true;
+    for (std::size_t k = 1; k + 1 < n && covers; ++k)
+      covers = orientation(at(s), at(s + k), at(s + k + 1)) >= 0;
+    if (covers)
+      return s;
+  }
+  return 0;
+}
+
+} // namespace
+
+std::vector<int> keyhole_loop(std::span<const Point2> points, const PolygonCell& cell) {
+  check_loop(points, cell.outer, "outer");
+  std::vector<int> loop = oriented(points, cell.outer, true);
+  if (cell.holes.empty())
+    return loop;
+
+  std::vector<std::vector<int>> holes;
+  holes.reserve(cell.holes.size());
+  for (const std::vector<int>& hole : cell.holes) {
+    check_loop(points, hole, "hole");
+    holes.push_back(oriented(points, hole, false));
+  }
+  const auto point = [&](int i) -> const Point2& { return points[static_cast<std::size_t>(i)]; };
+  const auto max_x = [&](const std::vector<int>& hole) {
+    double x = -std::numeric_limits<double>::infinity();
+    for (const int i : hole)
+      x = std::max(x, point(i).x());
+    return x;
+  };
+  // Eberly's order, the hole reaching furthest right first: its rightmost vertex then always
+  // sees a vertex of the outer loop or of an earlier hole past every hole still waiting.
+  std::stable_sort(holes.begin(), holes.end(),
+                   [&](const auto& a, const auto& b) { return max_x(a) > max_x(b); });
+
+  for (std::size_t h = 0; h < holes.size(); ++h) {
+    const std::vector<int>& hole = holes[h];
+    const std::size_t nh = hole.size();
+    const auto bridge_is_clear = [&](std::size_t m, std::size_t j) {
+      const std::size_t n = loop.size();
+      const Point2& pm = point(hole[m]);
+      const Point2& pv = point(loop[j]);
+      if (!opens_into(point(hole[(m + nh - 1) % nh]), pm, point(hole[(m + 1) % nh]), pv) ||
+          !opens_into(point(loop[(j + n - 1) % n]), pv, point(loop[(j + 1) % n]), pm))
+        return false;
+      const auto crosses_loop = [&](const std::vector<int>& other) {
+        for (std::size_t k = 0; k < other.size(); ++k)
+          if (blocks(pm, pv, point(other[k]), point(other[(k + 1) % other.size()])))
+            return true;
+        return false;
+      };
+      if (crosses_loop(loop))
+        return false;
+      for (std::size_t g = h; g < holes.size(); ++g)
+        if (crosses_loop(holes[g]))
+          return false;
+      return true;
+    };
+    // Hole vertices by decreasing x (the first is the classic choice), loop vertices by
+    // distance from it: the first clear pair is the bridge.
+    std::vector<std::size_t> hole_order(nh);
+    std::iota(hole_order.begin(), hole_order.end(), std::size_t{0});
+    std::stable_sort(hole_order.begin(), hole_order.end(), [&](std::size_t a, std::size_t b) {
+      return point(hole[a]).x() > point(hole[b]).x();
+    });
+    std::size_t bridge_m = hole_order.front();
+    std::size_t bridge_j = loop.size();
+    for (const std::size_t m : hole_order) {
+      std::vector<std::size_t> loop_order(loop.size());
+      std::iota(loop_order.begin(), loop_order.end(), std::size_t{0});
+      const Point2& pm = point(hole[m]);
+      std::stable_sort(loop_order.begin(), loop_order.end(), [&](std::size_t a, std::size_t b) {
+        return (point(loop[a]) - pm).squaredNorm() < (point(loop[b]) - pm).squaredNorm();
+      });
+      const auto clear = std::find_if(loop_order.begin(), loop_order.end(),
+                                      [&](std::size_t j) { return bridge_is_clear(m, j); });
+      if (clear != loop_order.end()) {
+        bridge_m = m;
+        bridge_j = *clear;
+        break;
+      }
+      // Degenerate input (a hole crossing the outer loop) has no clear bridge at all: the
+      // nearest vertex still gives the right area, and output must not stop a run.
+      if (bridge_j == loop.size())
+        bridge_j = loop_order.front();
+    }
+    std::vector<int> merged;
+    merged.reserve(loop.size() + nh + 2);
+    merged.insert(merged.end(), loop.begin(),
+                  loop.begin() + static_cast<std::ptrdiff_t>(bridge_j) + 1);
+    for (std::size_t k = 0; k <= nh; ++k)
+      merged.push_back(hole[(bridge_m + k) % nh]);
+    merged.insert(merged.end(), loop.begin() + static_cast<std::ptrdiff_t>(bridge_j), loop.end());
+    loop = std::move(merged);
+  }
+  return loop;
+}
+
+// ----------------------------------------------------------------------------------------
+// Atomic files
+
+namespace {
+
+fs::path temporary_path(const fs::path& file) {
+  fs::path tmp = file;
+  tmp += ".tmp";
+  return tmp;
+}
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+/// Writes @p file through @p write_to(temporary path) and renames it into place, so a reader
+/// sees either the old file or the complete new one, never a partial file.
+template <class WriteTo> void write_atomically(const fs::path& file, WriteTo&& write_to) {
+  const fs::path directory = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  std::error_code error;
+  const fs::file_status status = fs::status(directory, error);
+  if (!fs::exists(status))
+    throw InputError("cannot write " + quoted(file) + ": the directory " + quoted(directory) +
+                     " does not exist; create it or choose another output directory");
+  if (!fs::is_directory(status))
+    throw InputError("cannot write " + quoted(file) + ": " + quoted(directory) +
+                     " is not a directory; choose another output directory");
+  const fs::path tmp = temporary_path(file);
+  {
+    // Probe first: VTK would report the failure on stderr in its own words only.
+    std::ofstream probe(tmp, std::ios::binary | std::ios::trunc);
+    if (!probe) {
+      const std::string reason = std::error_code(errno, std::generic_category()).message();
+      throw InputError("cannot write " + quoted(file) + " in directory " + quoted(directory) +
+                       ": " + reason +
+                       "; make the directory writable or choose another output directory");
+    }
+  }
+  bool written = false;
+  try {
+    written = write_to(tmp);
+  } catch (...) {
+    fs::remove(tmp, error);
+    throw;
+  }
+  if (!written) {
+    fs::remove(tmp, error);
+    throw InputError("writing " + quoted(file) +
+                     " failed part way; check the free space of the output directory " +
+                     quoted(directory));
+  }
+  fs::rename(tmp, file, error);
+  if (error) {
+    const std::string reason = error.message();
+    fs::remove(tmp, error);
+    throw InputError("cannot replace " + quoted(file) + ": " + reason +
+                     "; remove it or choose another output directory");
+  }
+}
+
+// ----------------------------------------------------------------------------------------
+// VTK conversion
+
+vtkSmartPointer<vtkAbstractArray> to_vtk(const DataArray& array) {
+  return std::visit(
+      [&](const auto& values) -> vtkSmartPointer<vtkAbstractArray> {
+        using Value = typename std::decay_t<decltype(values)>::value_type;
+        using VtkArray =
+            std::conditional_t<std::is_same_v<Value, double>, vtkDoubleArray, vtkTypeInt32Array>;
+        auto result = vtkSmartPointer<VtkArray>::New();
+        result->SetName(array.name.c_str());
+        result->SetNumberOfComponents(array.n_components);
+        result->SetNumberOfTuples(static_cast<vtkIdType>(array.n_tuples()));
+        std::copy(values.begin(), values.end(), result->GetPointer(0));
+        return result;
+      },
+      array.values);
+}
+
+/// Adds @p arrays to @p target; @p n_tuples is the required tuple count (points or cells),
+/// or negative for field data, whose arrays may have any length.
+void add_arrays(vtkFieldData* target,
+                const DataArrays& arrays,
+                std::ptrdiff_t n_tuples,
+                const char* kind) {
+  for (const DataArray& array : arrays.arrays()) {
+    require(n_tuples < 0 || array.n_tuples() == static_cast<std::size_t>(n_tuples),
+            std::string(kind) + " array '" + array.name + "' has " +
+                std::to_string(array.n_tuples()) + " tuples for " + std::to_string(n_tuples) +
+                (std::string(kind) == "point" ? " points" : " cells"));
+    target->AddArray(to_vtk(array));
+  }
+}
+
+vtkNew<vtkPoints> to_vtk_points(const std::vector<Point2>& points) {
+  vtkNew<vtkPoints> result;
+  result->SetDataTypeToDouble();
+  result->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    result->SetPoint(static_cast<vtkIdType>(i), points[i].x(), points[i].y(), 0.0);
+  return result;
+}
+
+/// A cell array from loops of point indices (offsets + connectivity, VTK 9 layout).
+vtkNew<vtkCellArray> to_vtk_cells(const std::vector<std::vector<int>>& loops) {
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> connectivity;
+  offsets->SetNumberOfValues(static_cast<vtkIdType>(loops.size() + 1));
+  vtkIdType size = 0;
+  for (const auto& loop : loops)
+    size += static_cast<vtkIdType>(loop.size());
+  connectivity->SetNumberOfValues(size);
+  vtkIdType next = 0;
+  for (std::size_t c = 0; c < loops.size(); ++c) {
+    offsets->SetValue(static_cast<vtkIdType>(c), next);
+    for (const int i : loops[c])
+      connectivity->SetValue(next++, i);
+  }
+  offsets->SetValue(static_cast<vtkIdType>(loops.size()), next);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  return cells;
+}
+
+/// Binary, ZLib-compressed, appended raw data (the smallest files ParaView reads fastest).
+template <class Writer> bool write_xml(vtkDataObject* data, const fs::path& tmp) {
+  vtkNew<Writer> writer;
+  writer->SetInputData(data);
+  writer->SetFileName(tmp.c_str());
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  writer->SetCompressorTypeToZLib();
+  writer->SetHeaderTypeToUInt64(); // blocks beyond 4 GiB stay readable
+  return writer->Write() == 1 && writer->GetErrorCode() == 0;
+}
+
+void check_indices(const std::vector<int>& loop, std::size_t n_points, std::size_t min_size) {
+  require(loop.size() >= min_size, "a cell has " + std::to_string(loop.size()) + " points (needs " +
+                                       std::to_string(min_size) + ")");
+  for (const int i : loop)
+    require(i >= 0 && static_cast<std::size_t>(i) < n_points,
+            "point index " + std::to_string(i) + " out of range (" + std::to_string(n_points) +
+                " points)");
+}
+
+} // namespace
+
+void write_vtu(const fs::path& file, const PolygonMeshData& data) {
+  std::vector<std::vector<int>> loops;
+  loops.reserve(data.cells.size());
+  vtkNew<vtkUnsignedCharArray> types;
+  types->SetNumberOfValues(static_cast<vtkIdType>(data.cells.size()));
+  for (std::size_t c = 0; c < data.cells.size(); ++c) {
+    const PolygonCell& cell = data.cells[c];
+    std::vector<int> loop = keyhole_loop(data.points, cell);
+    if (cell.holes.empty()) {
+      const std::size_t start = fan_start(data.points, loop);
+      std::rotate(loop.begin(), loop.begin() + static_cast<std::ptrdiff_t>(start), loop.end());
+    }
+    const bool triangle = loop.size() == 3;
+    types->SetValue(static_cast<vtkIdType>(c), triangle ? VTK_TRIANGLE : VTK_POLYGON);
+    loops.push_back(std::move(loop));
+  }
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(to_vtk_points(data.points));
+  grid->SetCells(types, to_vtk_cells(loops));
+  add_arrays(grid->GetPointData(), data.point_data, static_cast<std::ptrdiff_t>(data.points.size()),
+             "point");
+  add_arrays(grid->GetCellData(), data.cell_data, static_cast<std::ptrdiff_t>(data.cells.size()),
+             "cell");
+  add_arrays(grid->GetFieldData(), data.field_data, -1, "field");
+  write_atomically(file, [&](const fs::path& tmp) {
+    return write_xml<vtkXMLUnstructuredGridWriter>(grid, tmp);
+  });
+}
+
+void write_vtp_points(const fs::path& file, const PointCloudData& data) {
+  std::vector<std::vector<int>> vertices(data.points.size());
+  for (std::size_t i = 0; i < data.points.size(); ++i)
+    vertices[i] = {static_cast<int>(i)};
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(to_vtk_points(data.points));
+  poly->SetVerts(to_vtk_cells(vertices));
+  add_arrays(poly->GetPointData(), data.point_data, static_cast<std::ptrdiff_t>(data.points.size()),
+             "point");
+  add_arrays(poly->GetFieldData(), data.field_data, -1, "field");
+  write_atomically(file,
+                   [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp); });
+}
+
+void write_vtp_lines(const fs::path& file, const PolylineData& data) {
+  for (const auto& line : data.lines)
+    check_indices(line, data.points.size(), 2);
+  vtkNew<vtkPolyData> poly;
+  poly->SetPoints(to_vtk_points(data.points));
+  poly->SetLines(to_vtk_cells(data.lines));
+  add_arrays(poly->GetPointData(), data.point_data, static_cast<std::ptrdiff_t>(data.points.size()),
+             "point");
+  add_arrays(poly->GetCellData(), data.cell_data, static_cast<std::ptrdiff_t>(data.lines.size()),
+             "cell");
+  add_arrays(poly->GetFieldData(), data.field_data, -1, "field");
+  write_atomically(file,
+                   [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp); });
+}
+
+// ----------------------------------------------------------------------------------------
+// PvdSeries
+
+namespace {
+
+std::string xml_escape(std::string_view text) {
+  std::string result;
+  result.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+    case '&':
+      result += "&amp;";
+      break;
+    case '<':
+      result += "&lt;";
+      break;
+    case '>':
+      result += "&gt;";
+      break;
+    case '"':
+      result += "&quot;";
+      break;
+    case '\'':
+      result += "&apos;";
+      break;
+    default:
+      if (static_cast<unsigned char>(c) < 0x20)
+        result += "&#" + std::to_string(static_cast<int>(c)) + ";";
+      else
+        result += c;
+    }
+  }
+  return result;
+}
+
+/// Shortest text that reads back as the same double.
+std::string exact_text(double value) {
+  char buffer[32];
+  const auto [end, error] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return error == std::errc{} ? std::string(buffer, end) : std::to_string(value);
+}
+
+} // namespace
+
+PvdSeries::PvdSeries(fs::path pvd_file) : pvd_file_(std::move(pvd_file)) {}
+
+void PvdSeries::add(double time, const fs::path& data_file, int part) {
+  require(std::isfinite(time), "time " + exact_text(time) + " of " + quoted(data_file));
+  require(part >= 0, "negative part index " + std::to_string(part));
+  const fs::path directory = fs::absolute(pvd_file_).parent_path().lexically_normal();
+  const fs::path target = fs::absolute(data_file).lexically_normal();
+  fs::path relative = target.lexically_relative(directory);
+  if (relative.empty())
+    relative = target;
+  entries_.push_back(Entry{time, part, relative.generic_string()});
+  try {
+    write();
+  } catch (...) {
+    entries_.pop_back(); // keep entries() equal to what the file on disk lists
+    throw;
+  }
+}
+
+void PvdSeries::write() const {
+  write_atomically(pvd_file_, [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\""
+        << (std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian")
+        << "\">\n  <Collection>\n";
+    for (const Entry& entry : entries_)
+      out << "    <DataSet timestep=\"" << exact_text(entry.time) << "\" group=\"\" part=\""
+          << entry.part << "\" file=\"" << xml_escape(entry.file) << "\"/>\n";
+    out << "  </Collection>\n</VTKFile>\n";
+    out.flush();
+    return static_cast<bool>(out);
+  });
+}
+
+} // namespace nmm
