@@ -377,6 +377,41 @@ TEST(CaseFile, WarningsPointAtTheKeyConcerned) {
       << spec.warnings[2];
 }
 
+// The reference page's examples must be valid cases: they are what users copy.
+TEST(CaseFile, ExamplesOfTheReferencePageAreValid) {
+  const fs::path page = fs::path(__FILE__).parent_path() / "../../../docs/case-file.md";
+  std::ifstream in(page);
+  ASSERT_TRUE(in) << "cannot open " << page;
+  std::vector<std::string> blocks;
+  std::string line;
+  bool inside = false;
+  while (std::getline(in, line)) {
+    if (!inside && line == "```toml") {
+      inside = true;
+      blocks.emplace_back();
+    } else if (inside && line == "```") {
+      inside = false;
+    } else if (inside) {
+      blocks.back() += line + "\n";
+    }
+  }
+  ASSERT_EQ(blocks.size(), 2u);
+  for (const std::string& block : blocks) {
+    const CaseSpec spec = parse_case_text(block, "docs/case-file.md");
+    EXPECT_TRUE(spec.warnings.empty()) << spec.warnings.front();
+  }
+  // The complete example sets every key at least once.
+  const CaseSpec full = parse_case_text(blocks[0], "case.toml");
+  EXPECT_EQ(full.materials.size(), 2u);
+  EXPECT_EQ(full.boundaries.size(), 2u);
+  EXPECT_EQ(full.loads.size(), 4u);
+  EXPECT_EQ(full.loads[3].kind, LoadKind::pressure);
+  EXPECT_DOUBLE_EQ(full.loads[3].factor_at(1.5), 0.5);
+  EXPECT_EQ(full.materials[1].plane, PlaneCondition::stress);
+  EXPECT_DOUBLE_EQ(full.materials[1].thickness, 0.3);
+  EXPECT_DOUBLE_EQ(full.analysis.end_time.value(), 2.0);
+}
+
 // ---- malformed input: each text must fail on the line marked "# <-" ----
 
 struct BadCase {
