@@ -1,0 +1,1057 @@
+// SPDX-License-Identifier: MIT
+#include "io/case_file.hpp"
+
+#include "mesh/error.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <span>
+#include <sstream>
+#include <utility>
+
+namespace nmm {
+
+double LoadSpec::factor_at(double time) const noexcept {
+  if (time >= ramp_end)
+    return 1.0;
+  if (time <= ramp_start)
+    return 0.0;
+  return (time - ramp_start) / (ramp_end - ramp_start);
+}
+
+const MaterialSpec* CaseSpec::find_material(std::string_view name) const {
+  const auto found = std::find_if(materials.begin(), materials.end(),
+                                  [&](const MaterialSpec& m) { return m.name == name; });
+  return found == materials.end() ? nullptr : &*found;
+}
+
+const JointSpec* CaseSpec::find_joint(std::string_view name) const {
+  const auto found = std::find_if(joints.begin(), joints.end(),
+                                  [&](const JointSpec& j) { return j.name == name; });
+  return found == joints.end() ? nullptr : &*found;
+}
+
+namespace {
+
+// The schema: the keys each table accepts. Also used to say where a misplaced key belongs.
+constexpr std::string_view top_level_keys[] = {"geometry", "title",   "cover_mesh", "materials",
+                                               "joints",   "contact", "boundary",   "load",
+                                               "analysis", "monitor", "output"};
+constexpr std::string_view cover_mesh_keys[] = {
+    "kind", "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance"};
+constexpr std::string_view material_keys[] = {"model",
+                                              "density",
+                                              "young",
+                                              "poisson",
+                                              "plane",
+                                              "thickness",
+                                              "initial_velocity",
+                                              "initial_angular_velocity",
+                                              "initial_stress"};
+constexpr std::string_view joint_keys[] = {"friction_angle", "cohesion", "tensile_strength"};
+constexpr std::string_view boundary_keys[] = {"curve", "point", "fix", "method"};
+constexpr std::string_view load_keys[] = {"gravity",  "point",    "force", "curve",
+                                          "traction", "pressure", "ramp"};
+constexpr std::string_view analysis_keys[] = {"kind",           "steps",
+                                              "time_step",      "max_step_displacement",
+                                              "penalty",        "penalty_stiffness",
+                                              "open_close_max", "solver",
+                                              "max_step_cuts",  "end_time"};
+constexpr std::string_view monitor_keys[] = {"name", "point"};
+constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every"};
+
+constexpr std::string_view top_level_name = "the top level";
+
+struct TableKeys {
+  std::string_view table;
+  std::span<const std::string_view> keys;
+};
+constexpr std::array<TableKeys, 10> all_tables{{{top_level_name, top_level_keys},
+                                                {"[cover_mesh]", cover_mesh_keys},
+                                                {"[materials.NAME]", material_keys},
+                                                {"[joints.NAME]", joint_keys},
+                                                {"[contact]", joint_keys},
+                                                {"[[boundary]]", boundary_keys},
+                                                {"[[load]]", load_keys},
+                                                {"[analysis]", analysis_keys},
+                                                {"[[monitor]]", monitor_keys},
+                                                {"[output]", output_keys}}};
+
+std::string lower(std::string_view text) {
+  std::string result(text);
+  for (char& c : result)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return result;
+}
+
+// Optimal string alignment distance (Levenshtein plus adjacent transpositions), ignoring
+// case, so that "yung", "Young" and "poisosn" all find their key.
+int edit_distance(std::string_view first, std::string_view second) {
+  const std::string a = lower(first);
+  const std::string b = lower(second);
+  const std::size_t n = a.size();
+  const std::size_t m = b.size();
+  std::vector<std::vector<int>> d(n + 1, std::vector<int>(m + 1, 0));
+  for (std::size_t i = 0; i <= n; ++i)
+    d[i][0] = static_cast<int>(i);
+  for (std::size_t j = 0; j <= m; ++j)
+    d[0][j] = static_cast<int>(j);
+  for (std::size_t i = 1; i <= n; ++i) {
+    for (std::size_t j = 1; j <= m; ++j) {
+      const int cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  }
+  return d[n][m];
+}
+
+// The candidate closest to @p word when it is close enough to be a typing slip, else "".
+std::string_view closest(std::string_view word, std::span<const std::string_view> candidates) {
+  // One- and two-letter words are one slip away from almost anything: no suggestion.
+  const int limit = word.size() <= 2 ? 0 : std::max(1, static_cast<int>(word.size()) / 3);
+  std::string_view best;
+  int best_distance = limit + 1;
+  for (const std::string_view candidate : candidates) {
+    const int distance = edit_distance(word, candidate);
+    if (distance < best_distance) {
+      best = candidate;
+      best_distance = distance;
+    }
+  }
+  return best;
+}
+
+std::string join(std::span<const std::string_view> words, std::string_view quote = "") {
+  std::string result;
+  for (const std::string_view word : words) {
+    if (!result.empty())
+      result += ", ";
+    result.append(quote).append(word).append(quote);
+  }
+  return result;
+}
+
+std::string format_number(double value) {
+  std::array<char, 32> buffer{};
+  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return error == std::errc{} ? std::string(buffer.data(), end) : std::string("?");
+}
+
+std::string range_requirement(std::int64_t minimum, std::int64_t maximum) {
+  if (maximum == std::numeric_limits<std::int64_t>::max())
+    return "it must be >= " + std::to_string(minimum);
+  return "it must be from " + std::to_string(minimum) + " to " + std::to_string(maximum);
+}
+
+std::string in_quotes(std::string_view text) { return '"' + std::string(text) + '"'; }
+
+std::string describe_type(const toml::node& node) {
+  switch (node.type()) {
+  case toml::node_type::table:
+    return "a table";
+  case toml::node_type::array:
+    return "an array";
+  case toml::node_type::string:
+    return "a string (" + in_quotes(node.as_string()->get()) + ")";
+  case toml::node_type::integer:
+    return "an integer";
+  case toml::node_type::floating_point:
+    return "a number";
+  case toml::node_type::boolean:
+    return "a boolean";
+  case toml::node_type::date:
+  case toml::node_type::time:
+  case toml::node_type::date_time:
+    return "a date or time";
+  case toml::node_type::none:
+    break;
+  }
+  return "nothing";
+}
+
+struct Position {
+  int line = 0;
+  int column = 0;
+  auto operator<=>(const Position&) const = default;
+};
+
+Position position_of(const toml::source_region& region) {
+  return {static_cast<int>(region.begin.line), static_cast<int>(region.begin.column)};
+}
+
+// Where the messages go: the file name and the warnings collected so far.
+class Context {
+public:
+  explicit Context(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(Position at, const std::string& message) const {
+    throw InputError(file_, at.line, at.column, message);
+  }
+  void warn(int line, const std::string& message) {
+    std::ostringstream out;
+    out << file_ << ':' << line << ": " << message;
+    warnings_.push_back(out.str());
+  }
+  [[nodiscard]] std::vector<std::string> take_warnings() { return std::move(warnings_); }
+
+private:
+  std::string file_;
+  std::vector<std::string> warnings_;
+};
+
+// Where else a misplaced key would be accepted, as a hint for the unknown-key message.
+std::string where_key_belongs(std::string_view key, std::string_view this_table) {
+  std::vector<std::string_view> tables;
+  for (const TableKeys& entry : all_tables) {
+    if (entry.table != this_table &&
+        std::find(entry.keys.begin(), entry.keys.end(), key) != entry.keys.end())
+      tables.push_back(entry.table);
+  }
+  if (tables.empty())
+    return {};
+  if (tables.front() == top_level_name)
+    return std::string(key) +
+           " is a top-level key: move it above the first [table] header (a key belongs to "
+           "the nearest header above it)";
+  return std::string(key) + " belongs in " + join(tables) + ": move it under that header";
+}
+
+// One TOML table of the case file with its allowed keys; every accessor reports problems
+// at the key or value they concern. Unknown keys are rejected on construction, before any
+// value is read, so a misspelt key is reported as such and not as a missing one.
+class TableView {
+public:
+  TableView(Context& context,
+            const toml::table& table,
+            std::string display_name,
+            std::span<const std::string_view> allowed)
+      : context_(context), table_(table), name_(std::move(display_name)), allowed_(allowed) {
+    reject_unknown_keys();
+  }
+
+  [[nodiscard]] const std::string& name() const { return name_; }
+  // How a key is named in messages: "[materials.rock] young", or just "geometry".
+  [[nodiscard]] std::string subject(std::string_view key) const {
+    return name_ == top_level_name ? std::string(key) : name_ + " " + std::string(key);
+  }
+  [[nodiscard]] Position position() const { return position_of(table_.source()); }
+  [[nodiscard]] const toml::node* find(std::string_view key) const { return table_.get(key); }
+  [[nodiscard]] bool has(std::string_view key) const { return find(key) != nullptr; }
+
+  [[nodiscard]] Position key_position(std::string_view key) const {
+    for (auto&& [name, node] : table_) {
+      if (name.str() == key)
+        return position_of(name.source());
+    }
+    return position();
+  }
+  [[nodiscard]] Position value_position(std::string_view key) const {
+    const toml::node* node = find(key);
+    return node ? position_of(node->source()) : position();
+  }
+
+  [[noreturn]] void fail_at_key(std::string_view key, const std::string& message) const {
+    context_.fail(key_position(key), message);
+  }
+  [[noreturn]] void fail_at_value(std::string_view key, const std::string& message) const {
+    context_.fail(value_position(key), message);
+  }
+  [[noreturn]] void
+  fail_missing(std::string_view key, std::string_view meaning, std::string_view example) const {
+    context_.fail(position(), name_ + " is missing " + std::string(key) + " (" +
+                                  std::string(meaning) + "); add a line such as " +
+                                  std::string(key) + " = " + std::string(example));
+  }
+  // "[materials.rock] young = -5 is out of range; " + requirement.
+  [[noreturn]] void
+  fail_range(std::string_view key, double value, const std::string& requirement) const {
+    fail_at_value(key,
+                  subject(key) + " = " + format_number(value) + " is out of range; " + requirement);
+  }
+
+  // A number (integers are accepted); finite.
+  [[nodiscard]] std::optional<double>
+  number(std::string_view key, std::string_view unit, std::string_view example) const {
+    const toml::node* node = find(key);
+    if (!node)
+      return std::nullopt;
+    return to_number(*node, key, unit, example);
+  }
+  [[nodiscard]] double number_or(std::string_view key,
+                                 double fallback,
+                                 std::string_view unit,
+                                 std::string_view example) const {
+    return number(key, unit, example).value_or(fallback);
+  }
+  [[nodiscard]] double required_number(std::string_view key,
+                                       std::string_view meaning,
+                                       std::string_view unit,
+                                       std::string_view example) const {
+    const std::optional<double> value = number(key, unit, example);
+    if (!value)
+      fail_missing(key, meaning, example);
+    return *value;
+  }
+
+  // A whole number in [minimum, maximum]; an integral float such as 1e4 is accepted.
+  [[nodiscard]] std::optional<std::int64_t> integer(std::string_view key,
+                                                    std::int64_t minimum,
+                                                    std::int64_t maximum,
+                                                    std::string_view example) const {
+    const toml::node* node = find(key);
+    if (!node)
+      return std::nullopt;
+    std::int64_t value = 0;
+    if (const auto* integral = node->as_integer()) {
+      value = integral->get();
+    } else if (const auto* floating = node->as_floating_point()) {
+      const double x = floating->get();
+      if (!std::isfinite(x) || x != std::floor(x))
+        context_.fail(position_of(node->source()),
+                      subject(key) + " must be a whole number, not " + format_number(x) +
+                          "; write e.g. " + std::string(key) + " = " + std::string(example));
+      // Beyond 2^53 a double no longer holds every integer; no count here gets near that.
+      if (std::abs(x) > 9.0e15)
+        context_.fail(position_of(node->source()), subject(key) + " = " + format_number(x) +
+                                                       " is out of range; " +
+                                                       range_requirement(minimum, maximum));
+      value = static_cast<std::int64_t>(x);
+    } else {
+      fail_type(*node, key, "a whole number", example);
+    }
+    if (value < minimum || value > maximum)
+      context_.fail(position_of(node->source()), subject(key) + " = " + std::to_string(value) +
+                                                     " is out of range; " +
+                                                     range_requirement(minimum, maximum));
+    return value;
+  }
+  [[nodiscard]] int small_integer_or(std::string_view key,
+                                     int fallback,
+                                     int minimum,
+                                     int maximum,
+                                     std::string_view example) const {
+    return static_cast<int>(integer(key, minimum, maximum, example).value_or(fallback));
+  }
+
+  [[nodiscard]] std::optional<std::string>
+  string(std::string_view key, std::string_view meaning, std::string_view example) const {
+    const toml::node* node = find(key);
+    if (!node)
+      return std::nullopt;
+    const auto* text = node->as_string();
+    if (!text)
+      fail_type(*node, key, "a string in double quotes (" + std::string(meaning) + ")", example);
+    return text->get();
+  }
+  // A name of something in the geometry: a non-empty string.
+  [[nodiscard]] std::optional<std::string> name_string(std::string_view key,
+                                                       std::string_view meaning) const {
+    std::optional<std::string> text = string(key, meaning, "\"base\"");
+    if (text && text->empty())
+      fail_at_value(key, subject(key) + " is empty; give the name of a " + std::string(meaning));
+    return text;
+  }
+
+  // One of @p choices; returns its index (or @p fallback when the key is absent).
+  [[nodiscard]] std::size_t choice(std::string_view key,
+                                   std::span<const std::string_view> choices,
+                                   std::size_t fallback) const {
+    const toml::node* node = find(key);
+    if (!node)
+      return fallback;
+    const auto* text = node->as_string();
+    if (!text)
+      fail_type(*node, key, "one of the strings " + join(choices, "\""),
+                in_quotes(choices[fallback]));
+    const auto found = std::find(choices.begin(), choices.end(), text->get());
+    if (found != choices.end())
+      return static_cast<std::size_t>(found - choices.begin());
+    std::string message = subject(key) + " = " + in_quotes(text->get()) +
+                          " is not allowed; use one of " + join(choices, "\"");
+    if (const std::string_view near = closest(text->get(), choices); !near.empty())
+      message = subject(key) + " = " + in_quotes(text->get()) + " is not allowed; did you mean " +
+                in_quotes(near) + "? (allowed: " + join(choices, "\"") + ")";
+    context_.fail(position_of(node->source()), message);
+  }
+
+  // An array of exactly N finite numbers.
+  template <int N>
+  [[nodiscard]] std::optional<Eigen::Matrix<double, N, 1>>
+  vector(std::string_view key, std::string_view unit, std::string_view example) const {
+    const toml::node* node = find(key);
+    if (!node)
+      return std::nullopt;
+    const auto* array = node->as_array();
+    if (!array)
+      fail_type(*node, key,
+                "an array of " + std::to_string(N) + " numbers (" + std::string(unit) + ")",
+                example);
+    if (array->size() != static_cast<std::size_t>(N))
+      context_.fail(position_of(node->source()),
+                    subject(key) + " has " + std::to_string(array->size()) +
+                        " value(s) but needs exactly " + std::to_string(N) + "; write e.g. " +
+                        std::string(key) + " = " + std::string(example));
+    Eigen::Matrix<double, N, 1> result;
+    for (int i = 0; i < N; ++i)
+      result[i] = to_number((*array)[static_cast<std::size_t>(i)], key, unit, example);
+    return result;
+  }
+
+private:
+  [[noreturn]] void fail_type(const toml::node& node,
+                              std::string_view key,
+                              const std::string& expected,
+                              std::string_view example) const {
+    std::string message = subject(key) + " must be " + expected + ", not " + describe_type(node);
+    if (node.is_string() && expected.find("number") != std::string::npos)
+      message += "; remove the quotes: " + std::string(key) + " = " + std::string(example);
+    else
+      message += "; write e.g. " + std::string(key) + " = " + std::string(example);
+    context_.fail(position_of(node.source()), message);
+  }
+
+  double to_number(const toml::node& node,
+                   std::string_view key,
+                   std::string_view unit,
+                   std::string_view example) const {
+    double value = 0.0;
+    if (const auto* integral = node.as_integer())
+      value = static_cast<double>(integral->get());
+    else if (const auto* floating = node.as_floating_point())
+      value = floating->get();
+    else
+      fail_type(node, key, "a number (" + std::string(unit) + ")", example);
+    if (!std::isfinite(value))
+      context_.fail(position_of(node.source()), subject(key) + " is " + format_number(value) +
+                                                    "; it must be a finite number (" +
+                                                    std::string(unit) + ")");
+    return value;
+  }
+
+  void reject_unknown_keys() const {
+    const toml::key* first = nullptr;
+    for (auto&& [key, node] : table_) {
+      if (std::find(allowed_.begin(), allowed_.end(), key.str()) != allowed_.end())
+        continue;
+      if (!first || position_of(key.source()) < position_of(first->source()))
+        first = &key;
+    }
+    if (!first)
+      return;
+    const std::string_view key = first->str();
+    std::string message = name_ == top_level_name
+                              ? "unknown key " + std::string(key) + " at the top level"
+                              : name_ + " has no key " + std::string(key);
+    if (const std::string elsewhere = where_key_belongs(key, name_); !elsewhere.empty())
+      message += "; " + elsewhere;
+    else if (const std::string_view near = closest(key, allowed_); !near.empty())
+      message += "; did you mean " + std::string(near) + "?";
+    else
+      message += "; remove it or correct its spelling";
+    message += " (allowed: " + join(allowed_) + ")";
+    context_.fail(position_of(first->source()), message);
+  }
+
+  Context& context_;
+  const toml::table& table_;
+  std::string name_;
+  std::span<const std::string_view> allowed_;
+};
+
+constexpr std::string_view cover_mesh_kinds[] = {"regular", "gmsh"};
+constexpr std::string_view material_models[] = {"nmm", "dda", "vem"};
+constexpr std::string_view plane_conditions[] = {"strain", "stress"};
+constexpr std::string_view fixed_components[] = {"x", "y", "xy"};
+constexpr std::string_view boundary_methods[] = {"exact", "penalty"};
+constexpr std::string_view analysis_kinds[] = {"dynamic", "static"};
+constexpr std::string_view solver_kinds[] = {"cholmod", "pcg"};
+
+// A table-valued top-level key ([cover_mesh], [analysis], ...), or nullptr when absent.
+const toml::table*
+single_table(const Context& context, const toml::table& root, std::string_view key) {
+  const toml::node* node = root.get(key);
+  if (!node)
+    return nullptr;
+  if (const auto* table = node->as_table())
+    return table;
+  const std::string header = "[" + std::string(key) + "]";
+  if (node->is_array())
+    context.fail(position_of(node->source()),
+                 std::string(key) + " must be one table, not an array of tables; write " + header +
+                     ", not [" + header + "]");
+  context.fail(position_of(node->source()), std::string(key) + " must be a table, not " +
+                                                describe_type(*node) + "; write the header " +
+                                                header + " and put its keys on the lines below");
+}
+
+// The tables of an array of tables ([[boundary]], [[load]], [[monitor]]).
+std::vector<const toml::table*>
+table_array(const Context& context, const toml::table& root, std::string_view key) {
+  std::vector<const toml::table*> tables;
+  const toml::node* node = root.get(key);
+  if (!node)
+    return tables;
+  const std::string header = "[[" + std::string(key) + "]]";
+  const auto* array = node->as_array();
+  if (!array)
+    context.fail(position_of(node->source()),
+                 std::string(key) + " must be an array of tables, not " + describe_type(*node) +
+                     "; write " + header + " (double brackets) before each entry");
+  for (const toml::node& element : *array) {
+    const auto* table = element.as_table();
+    if (!table)
+      context.fail(position_of(element.source()), "each " + std::string(key) +
+                                                      " entry must be a table, not " +
+                                                      describe_type(element) + "; write " + header +
+                                                      " followed by its keys on the lines below");
+    tables.push_back(table);
+  }
+  return tables;
+}
+
+// Named tables ([materials.NAME], [joints.NAME]) in the order of the file.
+struct NamedTable {
+  std::string name;
+  Position position;
+  const toml::table* table;
+};
+
+std::vector<NamedTable> named_tables(const Context& context,
+                                     const toml::table& root,
+                                     std::string_view key,
+                                     std::span<const std::string_view> item_keys,
+                                     std::string_view what) {
+  std::vector<NamedTable> items;
+  const toml::table* parent = single_table(context, root, key);
+  if (!parent)
+    return items;
+  for (auto&& [name, node] : *parent) {
+    const Position at = position_of(name.source());
+    const auto* table = node.as_table();
+    if (!table) {
+      const std::string item = std::string(key) + "." + std::string(name.str());
+      std::string message = item + " must be a table, not " + describe_type(node) + "; write [" +
+                            item + "] (" + std::string(name.str()) + " = a " + std::string(what) +
+                            ") and put its keys on the lines below";
+      if (std::find(item_keys.begin(), item_keys.end(), name.str()) != item_keys.end())
+        message = std::string(name.str()) + " cannot be set on [" + std::string(key) +
+                  "] itself; write [" + std::string(key) + ".NAME] (NAME = a " + std::string(what) +
+                  ") and put " + std::string(name.str()) + " under it";
+      context.fail(at, message);
+    }
+    if (name.str().empty())
+      context.fail(at, "[" + std::string(key) + ".\"\"] has an empty name; use the name of a " +
+                           std::string(what));
+    items.push_back({std::string(name.str()), at, table});
+  }
+  std::sort(items.begin(), items.end(),
+            [](const NamedTable& a, const NamedTable& b) { return a.position < b.position; });
+  return items;
+}
+
+std::filesystem::path resolve(const std::filesystem::path& case_file,
+                              const std::filesystem::path& path) {
+  return (case_file.parent_path() / path).lexically_normal();
+}
+
+CoverMeshSpec read_cover_mesh(Context& context, const toml::table& root) {
+  const toml::table* table = single_table(context, root, "cover_mesh");
+  if (!table)
+    context.fail({1, 1}, "the case file has no [cover_mesh] table; add one with at least "
+                         "size = <triangle edge length in m>, e.g. [cover_mesh] size = 0.5");
+  const TableView view(context, *table, "[cover_mesh]", cover_mesh_keys);
+  CoverMeshSpec spec;
+  spec.kind = static_cast<CoverMeshKind>(view.choice("kind", cover_mesh_kinds, 0));
+  spec.size = view.required_number("size", "math mesh triangle edge length in m", "m", "0.5");
+  if (!(spec.size > 0.0))
+    view.fail_range("size", spec.size, "the triangle edge length must be > 0 (m)");
+  if (const toml::node* order = view.find("order");
+      order && order->is_number() && order->value<double>() == 2.0)
+    view.fail_at_value("order", "[cover_mesh] order = 2 is not yet supported; use order = 0 "
+                                "(constant covers) or order = 1 (linear covers)");
+  spec.order = view.small_integer_or("order", 0, 0, 1, "1");
+  spec.max_triangles =
+      view.integer("max_triangles", 1, std::numeric_limits<std::int64_t>::max(), "5e6")
+          .value_or(spec.max_triangles);
+  spec.min_cover_area_ratio = view.number_or("min_cover_area_ratio", spec.min_cover_area_ratio,
+                                             "fraction of a math node's star", "1e-3");
+  if (!(spec.min_cover_area_ratio >= 0.0 && spec.min_cover_area_ratio < 0.5))
+    view.fail_range("min_cover_area_ratio", spec.min_cover_area_ratio,
+                    "it must be >= 0 and < 0.5 (a fraction of the star of a math node)");
+  spec.curve_tolerance = view.number_or("curve_tolerance", 0.0, "m", "0.01");
+  if (!(spec.curve_tolerance >= 0.0))
+    view.fail_range("curve_tolerance", spec.curve_tolerance, "it must be >= 0 (m; 0 = automatic)");
+  return spec;
+}
+
+JointProperties read_joint_properties(const TableView& view) {
+  JointProperties properties;
+  properties.friction_angle_degrees = view.number_or("friction_angle", 0.0, "degrees", "30.0");
+  if (!(properties.friction_angle_degrees >= 0.0 && properties.friction_angle_degrees < 90.0))
+    view.fail_range("friction_angle", properties.friction_angle_degrees,
+                    "the friction angle must be >= 0 and < 90 (degrees)");
+  properties.cohesion = view.number_or("cohesion", 0.0, "Pa", "0.0");
+  if (!(properties.cohesion >= 0.0))
+    view.fail_range("cohesion", properties.cohesion, "the cohesion must be >= 0 (Pa)");
+  properties.tensile_strength = view.number_or("tensile_strength", 0.0, "Pa", "0.0");
+  if (!(properties.tensile_strength >= 0.0))
+    view.fail_range("tensile_strength", properties.tensile_strength,
+                    "the tensile strength must be >= 0 (Pa)");
+  return properties;
+}
+
+// A material as read; whether a missing density is allowed is decided once [analysis] and
+// the loads are known.
+struct MaterialRead {
+  MaterialSpec spec;
+  Position position;
+  bool has_density = false;
+  bool has_thickness = false;
+};
+
+MaterialRead read_material(Context& context, const NamedTable& item) {
+  const TableView view(context, *item.table, "[materials." + item.name + "]", material_keys);
+  MaterialRead read;
+  MaterialSpec& spec = read.spec;
+  spec.name = item.name;
+  spec.line = item.position.line;
+  read.position = item.position;
+  if (const toml::node* model = view.find("model");
+      model && model->is_string() && lower(model->as_string()->get()) == "fem")
+    view.fail_at_value("model", "[materials." + item.name + "] model = \"" +
+                                    model->as_string()->get() +
+                                    "\" is not a model of its own; FEM is model = \"nmm\" on a "
+                                    "conforming mesh: set [cover_mesh] kind = \"gmsh\" and define "
+                                    "no joints in this region");
+  spec.model = static_cast<MaterialModel>(view.choice("model", material_models, 0));
+  if (const std::optional<double> density = view.number("density", "kg/m^3", "2600.0")) {
+    read.has_density = true;
+    spec.density = *density;
+    if (!(spec.density > 0.0))
+      view.fail_range("density", spec.density, "the density must be > 0 (kg/m^3)");
+  }
+  spec.young = view.required_number("young", "Young's modulus in Pa", "Pa", "5.0e9");
+  if (!(spec.young > 0.0))
+    view.fail_range("young", spec.young, "Young's modulus must be > 0 (Pa)");
+  spec.plane = static_cast<PlaneCondition>(view.choice("plane", plane_conditions, 0));
+  spec.poisson = view.required_number("poisson", "Poisson's ratio", "dimensionless", "0.25");
+  if (!(spec.poisson > -1.0 && spec.poisson < 0.5)) {
+    const std::string requirement =
+        spec.plane == PlaneCondition::strain
+            ? "Poisson's ratio must be > -1 and < 0.5 in plane strain (0.5 is incompressible)"
+            : "Poisson's ratio must be > -1 and < 0.5; plane stress would allow 0.5 in theory "
+              "but nmm does not support incompressible materials, so use e.g. 0.499";
+    view.fail_range("poisson", spec.poisson, requirement);
+  }
+  if (const std::optional<double> thickness = view.number("thickness", "m", "1.0")) {
+    read.has_thickness = true;
+    spec.thickness = *thickness;
+    if (!(spec.thickness > 0.0))
+      view.fail_range("thickness", spec.thickness, "the thickness must be > 0 (m)");
+  }
+  spec.initial_velocity =
+      view.vector<2>("initial_velocity", "m/s", "[0.0, 0.0]").value_or(Eigen::Vector2d::Zero());
+  spec.initial_angular_velocity = view.number_or("initial_angular_velocity", 0.0, "rad/s", "0.0");
+  spec.initial_stress = view.vector<3>("initial_stress", "Pa: sxx, syy, sxy", "[0.0, 0.0, 0.0]")
+                            .value_or(Eigen::Vector3d::Zero());
+  return read;
+}
+
+BoundarySpec read_boundary(Context& context, const toml::table& table) {
+  const TableView view(context, table, "[[boundary]]", boundary_keys);
+  BoundarySpec spec;
+  spec.line = view.position().line;
+  const bool has_curve = view.has("curve");
+  const bool has_point = view.has("point");
+  if (has_curve && has_point) {
+    const std::string_view later =
+        view.key_position("point") < view.key_position("curve") ? "curve" : "point";
+    view.fail_at_key(later, "a [[boundary]] has both curve and point; give one of them and "
+                            "write another [[boundary]] for the other");
+  }
+  if (!has_curve && !has_point)
+    context.fail(view.position(), "a [[boundary]] needs curve = \"NAME\" (a Physical Curve) or "
+                                  "point = \"NAME\" (a Physical Point); add one of them");
+  spec.is_curve = has_curve;
+  spec.target = has_curve ? *view.name_string("curve", "Physical Curve of the geometry")
+                          : *view.name_string("point", "Physical Point of the geometry");
+  if (!view.has("fix"))
+    view.fail_missing("fix", "the fixed displacement components: \"x\", \"y\" or \"xy\"", "\"xy\"");
+  const std::size_t fix = view.choice("fix", fixed_components, 2);
+  spec.fix_x = fix != 1;
+  spec.fix_y = fix != 0;
+  spec.method = static_cast<BoundaryMethod>(view.choice("method", boundary_methods, 0));
+  return spec;
+}
+
+LoadSpec read_load(Context& context, const toml::table& table) {
+  const TableView view(context, table, "[[load]]", load_keys);
+  LoadSpec spec;
+  spec.line = view.position().line;
+  // Exactly one of the three targets; report the second one written.
+  std::vector<std::pair<Position, std::string_view>> forms;
+  for (const std::string_view form : {"gravity", "point", "curve"})
+    if (view.has(form))
+      forms.emplace_back(view.key_position(form), form);
+  std::sort(forms.begin(), forms.end());
+  if (forms.empty())
+    context.fail(view.position(),
+                 "a [[load]] needs one of gravity = [gx, gy], point = \"P\" with force = [fx, "
+                 "fy], or curve = \"C\" with traction = [tx, ty] or pressure = p; add one");
+  if (forms.size() > 1)
+    view.fail_at_key(forms[1].second, "a [[load]] has both " + std::string(forms[0].second) +
+                                          " and " + std::string(forms[1].second) +
+                                          "; write one [[load]] per load");
+  const std::string_view form = forms.front().second;
+  const auto forbid = [&](std::string_view key, std::string_view reason) {
+    if (view.has(key))
+      view.fail_at_key(key, "a [[load]] with " + std::string(form) + " takes no " +
+                                std::string(key) + "; " + std::string(reason));
+  };
+  if (form == "gravity") {
+    spec.kind = LoadKind::gravity;
+    for (const std::string_view key : {"force", "traction", "pressure"})
+      forbid(key, "a gravity load has only gravity = [gx, gy] and an optional ramp");
+    spec.vector = *view.vector<2>("gravity", "m/s^2", "[0.0, -9.81]");
+  } else if (form == "point") {
+    spec.kind = LoadKind::point;
+    for (const std::string_view key : {"traction", "pressure"})
+      forbid(key, "a point load has force = [fx, fy] (N); traction and pressure act on a curve");
+    spec.target = *view.name_string("point", "Physical Point of the geometry");
+    const std::optional<Eigen::Vector2d> force = view.vector<2>("force", "N", "[1.0e4, 0.0]");
+    if (!force)
+      view.fail_missing("force", "the point force in N", "[1.0e4, 0.0]");
+    spec.vector = *force;
+  } else {
+    forbid("force", "a curve load has traction = [tx, ty] or pressure = p (Pa); force acts at "
+                    "a point");
+    spec.target = *view.name_string("curve", "Physical Curve of the geometry");
+    const bool has_traction = view.has("traction");
+    const bool has_pressure = view.has("pressure");
+    if (has_traction && has_pressure)
+      view.fail_at_key(view.key_position("pressure") < view.key_position("traction") ? "traction"
+                                                                                     : "pressure",
+                       "a curve [[load]] has both traction and pressure; write one [[load]] for "
+                       "each");
+    if (!has_traction && !has_pressure)
+      context.fail(view.position(), "a [[load]] on curve " + in_quotes(spec.target) +
+                                        " needs traction = [tx, ty] (Pa) or pressure = p (Pa, "
+                                        "positive pushes into the material); add one");
+    if (has_traction) {
+      spec.kind = LoadKind::traction;
+      spec.vector = *view.vector<2>("traction", "Pa", "[0.0, -1.0e5]");
+    } else {
+      spec.kind = LoadKind::pressure;
+      spec.pressure = *view.number("pressure", "Pa", "1.0e5");
+    }
+  }
+  if (const std::optional<Eigen::Vector2d> ramp = view.vector<2>("ramp", "s", "[0.0, 1.0]")) {
+    spec.ramp_start = (*ramp)[0];
+    spec.ramp_end = (*ramp)[1];
+    if (!(spec.ramp_start >= 0.0 && spec.ramp_end >= spec.ramp_start))
+      view.fail_at_value("ramp", "[[load]] ramp = [" + format_number(spec.ramp_start) + ", " +
+                                     format_number(spec.ramp_end) +
+                                     "] is out of range; it must be [t0, t1] with 0 <= t0 <= t1 "
+                                     "(s): zero before t0, full from t1");
+  }
+  return spec;
+}
+
+AnalysisSpec read_analysis(Context& context, const toml::table& root) {
+  const toml::table* table = single_table(context, root, "analysis");
+  if (!table)
+    context.fail({1, 1}, "the case file has no [analysis] table; add one with at least "
+                         "steps = <number of time steps>, e.g. [analysis] steps = 1000");
+  const TableView view(context, *table, "[analysis]", analysis_keys);
+  AnalysisSpec spec;
+  spec.kind = static_cast<AnalysisKind>(view.choice("kind", analysis_kinds, 0));
+  const std::optional<std::int64_t> steps = view.integer("steps", 1, 100'000'000, "2000");
+  if (!steps)
+    view.fail_missing("steps", "the number of time steps, 1 to 1e8", "2000");
+  spec.steps = static_cast<int>(*steps);
+  if (const toml::node* node = view.find("time_step")) {
+    if (const auto* text = node->as_string()) {
+      if (text->get() != "auto")
+        view.fail_at_value("time_step",
+                           "[analysis] time_step = " + in_quotes(text->get()) +
+                               " is not allowed; write a number of seconds (time_step = 1.0e-3) "
+                               "or \"auto\"");
+    } else {
+      spec.time_step = view.number("time_step", "s, or \"auto\"", "1.0e-3");
+      if (!(*spec.time_step > 0.0))
+        view.fail_range("time_step", *spec.time_step,
+                        "the time step must be > 0 (s); write \"auto\" to let nmm choose it");
+    }
+  }
+  spec.max_step_displacement =
+      view.number_or("max_step_displacement", 0.01, "fraction of the model size", "0.01");
+  if (!(spec.max_step_displacement > 0.0 && spec.max_step_displacement <= 0.5))
+    view.fail_range("max_step_displacement", spec.max_step_displacement,
+                    "it must be > 0 and <= 0.5 (a fraction of the model size; Shi uses "
+                    "0.001 to 0.01)");
+  if (view.has("penalty") && view.has("penalty_stiffness"))
+    view.fail_at_key(view.key_position("penalty") < view.key_position("penalty_stiffness")
+                         ? "penalty_stiffness"
+                         : "penalty",
+                     "[analysis] has both penalty (a multiple of the largest Young's modulus) "
+                     "and penalty_stiffness (N/m); keep one of them");
+  spec.penalty = view.number_or("penalty", 40.0, "multiple of the largest Young's modulus", "40.0");
+  if (!(spec.penalty > 0.0))
+    view.fail_range("penalty", spec.penalty,
+                    "it must be > 0 (a multiple of the largest Young's modulus; Shi uses 10 to "
+                    "100)");
+  spec.penalty_stiffness = view.number("penalty_stiffness", "N/m", "1.0e11");
+  if (spec.penalty_stiffness && !(*spec.penalty_stiffness > 0.0))
+    view.fail_range("penalty_stiffness", *spec.penalty_stiffness,
+                    "the spring stiffness must be > 0 (N/m)");
+  spec.open_close_max = view.small_integer_or("open_close_max", 6, 1, 100, "6");
+  spec.solver = static_cast<LinearSolverKind>(view.choice("solver", solver_kinds, 0));
+  spec.max_step_cuts = view.small_integer_or("max_step_cuts", 10, 0, 50, "10");
+  spec.end_time = view.number("end_time", "s", "1.0");
+  if (spec.end_time && !(*spec.end_time > 0.0))
+    view.fail_range("end_time", *spec.end_time, "the end time must be > 0 (s)");
+  return spec;
+}
+
+MonitorSpec read_monitor(Context& context, const toml::table& table) {
+  const TableView view(context, table, "[[monitor]]", monitor_keys);
+  MonitorSpec spec;
+  spec.line = view.position().line;
+  const std::optional<std::string> name = view.string("name", "the monitor's name", "\"crest\"");
+  if (!name)
+    view.fail_missing("name", "a unique name of letters, digits and _", "\"crest\"");
+  if (name->empty())
+    view.fail_at_value("name", "[[monitor]] name is empty; give a name of letters, digits and _");
+  const auto bad = std::find_if(name->begin(), name->end(), [](char c) {
+    return !(std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+  });
+  if (bad != name->end()) {
+    std::string fixed = *name;
+    for (char& c : fixed)
+      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_'))
+        c = '_';
+    view.fail_at_value("name", "[[monitor]] name = " + in_quotes(*name) + " contains '" +
+                                   std::string(1, *bad) +
+                                   "'; use only letters, digits and _ (it prefixes the "
+                                   "history.csv columns), e.g. name = " +
+                                   in_quotes(fixed));
+  }
+  spec.name = *name;
+  const std::optional<Eigen::Vector2d> point = view.vector<2>("point", "m", "[10.0, 5.0]");
+  if (!point)
+    view.fail_missing("point", "the starting position [x, y] in m", "[10.0, 5.0]");
+  spec.point = *point;
+  return spec;
+}
+
+OutputSpec read_output(Context& context, const toml::table& root, const std::string& file) {
+  OutputSpec spec;
+  spec.dir = resolve(file, "out");
+  const toml::table* table = single_table(context, root, "output");
+  if (!table)
+    return spec;
+  const TableView view(context, *table, "[output]", output_keys);
+  if (const std::optional<std::string> dir = view.string("dir", "a folder", "\"out\"")) {
+    if (dir->empty())
+      view.fail_at_value("dir", "[output] dir is empty; give a folder, e.g. dir = \"out\"");
+    spec.dir = resolve(file, *dir);
+  }
+  spec.every = view.small_integer_or("every", 1, 1, 100'000'000, "10");
+  spec.checkpoint_every = view.small_integer_or("checkpoint_every", 0, 0, 100'000'000, "1000");
+  return spec;
+}
+
+bool has_geometry_extension(const std::filesystem::path& path) {
+  const std::string extension = lower(path.extension().string());
+  return extension == ".geo" || extension == ".msh";
+}
+
+// Checks that need more than one table, and the remarks that do not stop a run.
+// Line of root[table][key], or 1 when absent (warnings about something left out).
+int line_of(const toml::table& root, std::string_view table, std::string_view key) {
+  if (const toml::node* node = root[table][key].node())
+    return position_of(node->source()).line;
+  if (const toml::node* node = root[table].node())
+    return position_of(node->source()).line;
+  return 1;
+}
+
+void check_whole_case(Context& context,
+                      const toml::table& root,
+                      CaseSpec& spec,
+                      const std::vector<MaterialRead>& materials,
+                      const std::vector<Position>& monitor_name_positions) {
+  const LoadSpec* gravity = nullptr;
+  for (const LoadSpec& load : spec.loads)
+    if (load.kind == LoadKind::gravity && !gravity)
+      gravity = &load;
+  for (const MaterialRead& read : materials) {
+    const MaterialSpec& material = read.spec;
+    if (!read.has_density) {
+      if (spec.analysis.kind == AnalysisKind::dynamic)
+        context.fail(read.position,
+                     "[materials." + material.name +
+                         "] is missing density (kg/m^3), which a dynamic analysis needs; add "
+                         "e.g. density = 2600.0, or set [analysis] kind = \"static\"");
+      if (gravity)
+        context.fail(read.position,
+                     "[materials." + material.name +
+                         "] is missing density (kg/m^3), which the gravity [[load]] at line " +
+                         std::to_string(gravity->line) + " needs; add e.g. density = 2600.0");
+    }
+    if (read.has_thickness && material.plane == PlaneCondition::strain)
+      context.warn(material.line, "[materials." + material.name +
+                                      "] thickness is ignored in plane strain (results are per "
+                                      "metre of thickness); set plane = \"stress\" to use it");
+    if (spec.analysis.kind == AnalysisKind::quasi_static &&
+        (!material.initial_velocity.isZero() || material.initial_angular_velocity != 0.0))
+      context.warn(material.line, "[materials." + material.name +
+                                      "] has an initial velocity, which a static analysis "
+                                      "discards (velocities are reset every step)");
+  }
+
+  for (std::size_t i = 0; i < spec.monitors.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (spec.monitors[i].name == spec.monitors[j].name)
+        context.fail(monitor_name_positions[i], "monitor name " + in_quotes(spec.monitors[i].name) +
+                                                    " is already used by the [[monitor]] at line " +
+                                                    std::to_string(spec.monitors[j].line) +
+                                                    "; give each monitor a unique name");
+
+  const bool has_nmm =
+      std::any_of(spec.materials.begin(), spec.materials.end(),
+                  [](const MaterialSpec& m) { return m.model == MaterialModel::nmm; });
+  if (spec.cover_mesh.order != 0 && !has_nmm)
+    context.warn(line_of(root, "cover_mesh", "order"),
+                 "[cover_mesh] order is used only by model = \"nmm\" materials and no "
+                 "material has it; the order has no effect");
+
+  for (std::size_t i = 0; i < spec.boundaries.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      const BoundarySpec& a = spec.boundaries[j];
+      const BoundarySpec& b = spec.boundaries[i];
+      if (a.target == b.target && a.is_curve == b.is_curve)
+        context.warn(b.line, std::string(b.is_curve ? "curve " : "point ") + in_quotes(b.target) +
+                                 " is already fixed by the [[boundary]] at line " +
+                                 std::to_string(a.line) + "; the fixed components are combined");
+    }
+  if (spec.analysis.kind == AnalysisKind::quasi_static && spec.boundaries.empty())
+    context.warn(line_of(root, "analysis", "kind"),
+                 "a static analysis with no [[boundary]]: unless contacts hold it, the "
+                 "model can move as a rigid body and the solve fails; fix a curve or point");
+  if (spec.analysis.end_time && spec.analysis.time_step &&
+      *spec.analysis.time_step * spec.analysis.steps < *spec.analysis.end_time)
+    context.warn(line_of(root, "analysis", "end_time"),
+                 "[analysis] steps * time_step = " +
+                     format_number(*spec.analysis.time_step * spec.analysis.steps) +
+                     " s is before end_time = " + format_number(*spec.analysis.end_time) +
+                     " s; the run stops after the last step");
+}
+
+CaseSpec read_case(Context& context, const toml::table& root, const std::string& file) {
+  const TableView top(context, root, std::string(top_level_name), top_level_keys);
+  CaseSpec spec;
+  spec.file = file;
+
+  const std::optional<std::string> geometry =
+      top.name_string("geometry", "geometry file (.geo or .msh)");
+  if (!geometry)
+    context.fail({1, 1}, "the case file has no geometry key; add geometry = \"slope.geo\" "
+                         "(a .geo or .msh file, relative to the case file) above the first "
+                         "[table] header");
+  if (!has_geometry_extension(*geometry))
+    top.fail_at_value("geometry", "geometry = " + in_quotes(*geometry) +
+                                      " is not a .geo or .msh file; give the gmsh geometry "
+                                      "(.geo) or mesh (.msh) with the physical groups");
+  spec.geometry = resolve(file, *geometry);
+  spec.geometry_line = top.key_position("geometry").line;
+  spec.title = top.string("title", "a title", "\"Slope with bedding joints\"").value_or("");
+
+  spec.cover_mesh = read_cover_mesh(context, root);
+
+  std::vector<MaterialRead> materials;
+  for (const NamedTable& item :
+       named_tables(context, root, "materials", material_keys, "Physical Surface"))
+    materials.push_back(read_material(context, item));
+  if (materials.empty()) {
+    const toml::node* node = root.get("materials");
+    context.fail(node ? position_of(node->source()) : Position{1, 1},
+                 "the case file has no material; add a [materials.NAME] table for each "
+                 "Physical Surface NAME of the geometry, with at least young and poisson");
+  }
+  for (const MaterialRead& read : materials)
+    spec.materials.push_back(read.spec);
+
+  for (const NamedTable& item :
+       named_tables(context, root, "joints", joint_keys, "Physical Curve")) {
+    const TableView view(context, *item.table, "[joints." + item.name + "]", joint_keys);
+    spec.joints.push_back({item.name, item.position.line, read_joint_properties(view)});
+  }
+  if (const toml::table* table = single_table(context, root, "contact")) {
+    const TableView view(context, *table, "[contact]", joint_keys);
+    spec.contact = read_joint_properties(view);
+  }
+
+  for (const toml::table* table : table_array(context, root, "boundary"))
+    spec.boundaries.push_back(read_boundary(context, *table));
+  for (const toml::table* table : table_array(context, root, "load"))
+    spec.loads.push_back(read_load(context, *table));
+
+  spec.analysis = read_analysis(context, root);
+
+  std::vector<Position> monitor_name_positions;
+  for (const toml::table* table : table_array(context, root, "monitor")) {
+    spec.monitors.push_back(read_monitor(context, *table));
+    monitor_name_positions.push_back(position_of(table->get("name")->source()));
+  }
+
+  spec.output = read_output(context, root, file);
+
+  check_whole_case(context, root, spec, materials, monitor_name_positions);
+  spec.warnings = context.take_warnings();
+  return spec;
+}
+
+} // namespace
+
+CaseSpec parse_case_text(std::string_view text, const std::filesystem::path& name_for_messages) {
+  const std::string file = name_for_messages.string();
+  Context context(file);
+  toml::table root;
+  try {
+    root = toml::parse(text, std::string_view(file));
+  } catch (const toml::parse_error& error) {
+    context.fail(position_of(error.source()),
+                 "TOML syntax error: " + std::string(error.description()) +
+                     "; correct the syntax (https://toml.io: key = value, strings in double "
+                     "quotes, [table] headers)");
+  }
+  return read_case(context, root, file);
+}
+
+CaseSpec read_case_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    throw InputError(file.string(), 0, 0, "cannot open the case file; check the path");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  CaseSpec spec = parse_case_text(buffer.str(), file);
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(spec.geometry, error))
+    throw InputError(file.string(), spec.geometry_line, 0,
+                     "the geometry file " + spec.geometry.string() +
+                         " does not exist; the path is relative to the case file's folder");
+  return spec;
+}
+
+} // namespace nmm

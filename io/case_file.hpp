@@ -1,0 +1,230 @@
+// SPDX-License-Identifier: MIT
+// io/case_file.hpp — the case file (TOML) as a plain value tree with every default applied.
+// The keys, units, defaults and ranges are documented in docs/case-file.md; the shape is
+// DESIGN.md's contract "Case file (TOML)".
+#pragma once
+
+#include "mesh/geometry.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace nmm {
+
+/// `[cover_mesh] kind`: how the mathematical mesh is made.
+enum class CoverMeshKind {
+  regular, ///< equilateral triangles in rows along x (DESIGN.md "Command line")
+  gmsh     ///< the triangulation gmsh makes of the geometry
+};
+
+/// `[materials.NAME] model`: which kind of cover the region is discretised with.
+enum class MaterialModel { nmm, dda, vem };
+
+/// `[materials.NAME] plane`: the 2D idealisation of the material.
+enum class PlaneCondition { strain, stress };
+
+/// `[[boundary]] method`: how a fixed displacement is imposed.
+enum class BoundaryMethod {
+  exact,  ///< the fixed dof are eliminated from the system
+  penalty ///< Shi's stiff springs (fixed points), stiffness from [analysis] penalty
+};
+
+/// `[[load]]`: which of the four load forms an entry is.
+enum class LoadKind {
+  gravity,  ///< `gravity = [gx, gy]` (m/s^2) on every material with a density
+  point,    ///< `point = "P"`, `force = [fx, fy]` (N)
+  traction, ///< `curve = "C"`, `traction = [tx, ty]` (Pa)
+  pressure  ///< `curve = "C"`, `pressure = p` (Pa, positive pushes into the material)
+};
+
+/// `[analysis] kind`.
+enum class AnalysisKind {
+  dynamic,     ///< "dynamic": velocity carried over between steps
+  quasi_static ///< "static": Shi's static analysis, velocity reset every step
+};
+
+/// `[analysis] solver`.
+enum class LinearSolverKind { cholmod, pcg };
+
+/// `[cover_mesh]`: the mathematical mesh and the cover functions.
+struct CoverMeshSpec {
+  CoverMeshKind kind = CoverMeshKind::regular;
+  /// Triangle edge length (m), > 0. Required.
+  double size = 0.0;
+  /// Cover function order for NMM regions: 0 or 1.
+  int order = 0;
+  /// Refuse to build a math mesh with more triangles than this (guards against a size
+  /// given in millimetres), > 0.
+  std::int64_t max_triangles = 5'000'000;
+  /// Covers smaller than this fraction of their math node's star are merged, in [0, 0.5).
+  double min_cover_area_ratio = 1e-3;
+  /// Largest chord deviation when gmsh curves are sampled to polylines (m); 0 = automatic.
+  double curve_tolerance = 0.0;
+};
+
+/// `[materials.NAME]`: one Physical Surface of the geometry.
+struct MaterialSpec {
+  /// The table name, which must be a Physical Surface name of the geometry.
+  std::string name;
+  /// Line of `[materials.NAME]` (or of the key NAME) in the case file, for later messages.
+  int line = 0;
+  MaterialModel model = MaterialModel::nmm;
+  /// kg/m^3, > 0; 0 only when it was left out in a static analysis without gravity.
+  double density = 0.0;
+  /// Young's modulus (Pa), > 0.
+  double young = 0.0;
+  /// Poisson's ratio, -1 < poisson < 0.5.
+  double poisson = 0.0;
+  PlaneCondition plane = PlaneCondition::strain;
+  /// Out-of-plane thickness (m) of a plane-stress material, > 0; 1 for plane strain.
+  double thickness = 1.0;
+  /// Initial velocity (m/s) of every point of the material.
+  Eigen::Vector2d initial_velocity = Eigen::Vector2d::Zero();
+  /// Initial angular velocity (rad/s, counter-clockwise) of each block about its centroid.
+  double initial_angular_velocity = 0.0;
+  /// Initial stress (Pa) as (sxx, syy, sxy); tension positive.
+  Eigen::Vector3d initial_stress = Eigen::Vector3d::Zero();
+};
+
+/// Mohr-Coulomb strength of a joint or of a contact (`[joints.NAME]`, `[contact]`).
+struct JointProperties {
+  /// Degrees, in [0, 90).
+  double friction_angle_degrees = 0.0;
+  /// Pa, >= 0.
+  double cohesion = 0.0;
+  /// Pa, >= 0.
+  double tensile_strength = 0.0;
+};
+
+/// `[joints.NAME]`: one Physical Curve that cuts the material.
+struct JointSpec {
+  std::string name;
+  /// Line of `[joints.NAME]` (or of the key NAME) in the case file.
+  int line = 0;
+  JointProperties properties;
+};
+
+/// `[[boundary]]`: fixed displacement components on a named curve or point.
+struct BoundarySpec {
+  /// Name of the Physical Curve (when is_curve) or Physical Point.
+  std::string target;
+  bool is_curve = true;
+  /// Which components are fixed (at least one is true).
+  bool fix_x = false;
+  bool fix_y = false;
+  BoundaryMethod method = BoundaryMethod::exact;
+  /// Line of this `[[boundary]]` header in the case file.
+  int line = 0;
+};
+
+/// `[[load]]`: one load with an optional linear ramp in time.
+struct LoadSpec {
+  LoadKind kind = LoadKind::gravity;
+  /// Physical Point (kind point) or Physical Curve (traction, pressure) name; empty for
+  /// gravity.
+  std::string target;
+  /// gravity (m/s^2), force (N) or traction (Pa), by kind; zero for pressure.
+  Eigen::Vector2d vector = Eigen::Vector2d::Zero();
+  /// Pa, positive pushes into the material; kind pressure only.
+  double pressure = 0.0;
+  /// Ramp (s): zero before ramp_start, linear to full at ramp_end, full after.
+  /// Both 0 (the default) mean full from t = 0.
+  double ramp_start = 0.0;
+  double ramp_end = 0.0;
+  /// Line of this `[[load]]` header in the case file.
+  int line = 0;
+
+  /// The fraction of the load applied at @p time (s): 0 before the ramp, 1 after it.
+  [[nodiscard]] double factor_at(double time) const noexcept;
+};
+
+/// `[analysis]`: time stepping, contact and solver settings.
+struct AnalysisSpec {
+  AnalysisKind kind = AnalysisKind::dynamic;
+  /// Number of time steps, 1..1e8. Required.
+  int steps = 0;
+  /// Time step (s); empty for "auto" (chosen from max_step_displacement).
+  std::optional<double> time_step;
+  /// Largest displacement in a step as a fraction of the model size (Shi's g2), (0, 0.5].
+  double max_step_displacement = 0.01;
+  /// Contact and penalty-boundary spring stiffness as a multiple of the largest Young's
+  /// modulus (Shi's g0), > 0. Unused when penalty_stiffness is set.
+  double penalty = 40.0;
+  /// Absolute spring stiffness (N/m), > 0, instead of penalty.
+  std::optional<double> penalty_stiffness;
+  /// Most open-close iterations per step, 1..100.
+  int open_close_max = 6;
+  LinearSolverKind solver = LinearSolverKind::cholmod;
+  /// Most times a step may be cut (halved) before the run stops, 0..50.
+  int max_step_cuts = 10;
+  /// Stop when this time (s) is reached, even before `steps`; empty: run all steps.
+  std::optional<double> end_time;
+};
+
+/// `[[monitor]]`: a material point whose history goes to history.csv.
+struct MonitorSpec {
+  /// Unique, [A-Za-z0-9_]+ (a CSV column prefix).
+  std::string name;
+  /// Starting position (m); the monitor follows the material point that starts here.
+  Point2 point = Point2::Zero();
+  /// Line of this `[[monitor]]` header in the case file.
+  int line = 0;
+};
+
+/// `[output]`.
+struct OutputSpec {
+  /// Output folder, resolved against the case file's folder.
+  std::filesystem::path dir;
+  /// Write the VTK files every this many steps, >= 1.
+  int every = 1;
+  /// Write a checkpoint every this many steps, >= 0; 0 = never.
+  int checkpoint_every = 0;
+};
+
+/// The whole case file, every default applied (see docs/case-file.md).
+struct CaseSpec {
+  /// The case file as given to the reader, for messages ("case.toml:12: ...").
+  std::filesystem::path file;
+  /// The geometry (.geo or .msh), resolved against the case file's folder.
+  std::filesystem::path geometry;
+  /// Line of the `geometry` key, for messages about the geometry file.
+  int geometry_line = 0;
+  std::string title;
+  CoverMeshSpec cover_mesh;
+  /// In the order of the case file.
+  std::vector<MaterialSpec> materials;
+  /// In the order of the case file.
+  std::vector<JointSpec> joints;
+  /// Properties of every contact that is not on a named joint.
+  JointProperties contact;
+  std::vector<BoundarySpec> boundaries;
+  std::vector<LoadSpec> loads;
+  AnalysisSpec analysis;
+  std::vector<MonitorSpec> monitors;
+  OutputSpec output;
+  /// Non-fatal remarks, each "file:line: what; why it may matter".
+  std::vector<std::string> warnings;
+
+  /// The material / joint called @p name, or nullptr.
+  [[nodiscard]] const MaterialSpec* find_material(std::string_view name) const;
+  [[nodiscard]] const JointSpec* find_joint(std::string_view name) const;
+};
+
+/// Reads and checks a case file; relative paths are resolved against its folder, and the
+/// geometry file must exist.
+/// @throws InputError "file:line:column: what is wrong; what to do" for the first problem.
+[[nodiscard]] CaseSpec read_case_file(const std::filesystem::path& file);
+
+/// As read_case_file() on @p text, with @p name_for_messages standing for the file (used in
+/// messages and to resolve relative paths); does not look at the file system.
+/// @throws InputError as read_case_file().
+[[nodiscard]] CaseSpec parse_case_text(std::string_view text,
+                                       const std::filesystem::path& name_for_messages);
+
+} // namespace nmm
