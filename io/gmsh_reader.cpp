@@ -1,0 +1,1043 @@
+// SPDX-License-Identifier: MIT
+#include "io/gmsh_reader.hpp"
+
+#include "mesh/error.hpp"
+#include "mesh/geometry.hpp"
+
+#include <Eigen/Core>
+#include <gmsh.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <clocale>
+#include <cmath>
+#include <cstddef>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace nmm {
+
+namespace {
+
+using Point3 = Eigen::Vector3d;
+
+std::atomic<bool> session_alive{false};
+
+// ----------------------------------------------------------------------------------------
+// Message helpers
+
+std::string number_text(double value) {
+  std::ostringstream out;
+  out.precision(10);
+  out << value;
+  return out.str();
+}
+
+std::string point_text(const Point2& p) {
+  return '(' + number_text(p.x()) + ", " + number_text(p.y()) + ')';
+}
+
+std::string tag_list(const std::vector<int>& tags) {
+  std::string text;
+  const std::size_t shown = std::min<std::size_t>(tags.size(), 12);
+  for (std::size_t i = 0; i < shown; ++i)
+    text += (i > 0 ? ", " : "") + std::to_string(tags[i]);
+  if (shown < tags.size())
+    text += ", ... (" + std::to_string(tags.size()) + " in all)";
+  return text;
+}
+
+// ----------------------------------------------------------------------------------------
+// gmsh errors. The session sets General.AbortOnError = 0, so gmsh logs errors and carries on;
+// we read them back from the logger after each call that can fail on user input.
+
+/// Errors gmsh logs from construction on. Restarting the logger empties it, which keeps
+/// logger::get() (a full copy) cheap.
+class GmshErrorLog {
+public:
+  GmshErrorLog() {
+    gmsh::logger::stop();
+    gmsh::logger::start();
+  }
+
+  [[nodiscard]] std::vector<std::string> errors() const {
+    std::vector<std::string> log;
+    gmsh::logger::get(log);
+    std::vector<std::string> result;
+    const std::string prefix = "Error: ";
+    for (const std::string& line : log) {
+      if (line.rfind(prefix, 0) == 0)
+        result.push_back(line.substr(prefix.size()));
+    }
+    return result;
+  }
+};
+
+[[noreturn]] void throw_gmsh_error(const std::string& file,
+                                   const std::string& doing,
+                                   const std::vector<std::string>& errors) {
+  const std::string& first = errors.front();
+  const std::string more =
+      errors.size() > 1
+          ? " (gmsh reported " + std::to_string(errors.size() - 1) + " more error(s) after this)"
+          : std::string();
+  // gmsh's .geo parser writes "'FILE', line N: what"; keep FILE (it may be an included file)
+  // and N so that editors can jump there.
+  static const std::regex located(R"('([^']*)', line ([0-9]+): (.*))");
+  std::smatch match;
+  if (std::regex_search(first, match, located)) {
+    const int line = std::stoi(match[2].str());
+    throw InputError(match[1].str(), line, 0,
+                     "gmsh: " + match[3].str() + more +
+                         "; fix the file there (gmsh names the line where it noticed the "
+                         "problem, which can be just after the actual mistake)");
+  }
+  throw InputError(file + ": gmsh could not " + doing + ": " + first + more);
+}
+
+/// Runs @p action and turns whatever gmsh reports into an InputError about @p file.
+template <class Action>
+void run_gmsh(const std::string& file, const std::string& doing, Action&& action) {
+  const GmshErrorLog log;
+  try {
+    action();
+  } catch (const std::string& message) {
+    // Only when a .geo file turned General.AbortOnError back on: gmsh then throws its
+    // message as a std::string.
+    throw_gmsh_error(file, doing, {message});
+  }
+  const std::vector<std::string> errors = log.errors();
+  if (!errors.empty())
+    throw_gmsh_error(file, doing, errors);
+}
+
+// ----------------------------------------------------------------------------------------
+// Input file checks
+
+enum class GmshFileKind { geo, msh };
+
+GmshFileKind check_geometry_file(const std::filesystem::path& file) {
+  const std::string name = file.string();
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (!std::filesystem::exists(status)) {
+    throw InputError(name + ": geometry file not found (looked for " +
+                     std::filesystem::absolute(file, error).string() +
+                     "); check the file name and the directory it is given relative to");
+  }
+  if (!std::filesystem::is_regular_file(status)) {
+    throw InputError(name + ": not a regular file (a directory?); give a gmsh .geo or .msh "
+                            "file");
+  }
+  std::string extension = file.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension != ".geo" && extension != ".msh") {
+    throw InputError(name + ": unknown geometry file type \"" + extension +
+                     "\"; give a gmsh .geo file (built-in or OpenCASCADE kernel) or a .msh "
+                     "file (format 2 or 4)");
+  }
+  if (!std::ifstream(file)) {
+    throw InputError(name + ": the file exists but cannot be read; check its permissions");
+  }
+  return extension == ".geo" ? GmshFileKind::geo : GmshFileKind::msh;
+}
+
+/// gmsh 4.8 runs a .geo's `Exit;` as exit(0) of the whole process, which would end nmm
+/// silently with success. Refuse such files before gmsh sees them (files they Include are not
+/// checked).
+void check_no_exit_command(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  bool in_block_comment = false;
+  static const std::regex exit_command(R"((^|[^A-Za-z0-9_])Exit\s*;)");
+  for (int number = 1; std::getline(in, line); ++number) {
+    std::string code;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      if (in_block_comment) {
+        if (line.compare(i, 2, "*/") == 0) {
+          in_block_comment = false;
+          ++i;
+        }
+      } else if (line.compare(i, 2, "/*") == 0) {
+        in_block_comment = true;
+        ++i;
+      } else if (line.compare(i, 2, "//") == 0) {
+        break;
+      } else {
+        code += line[i];
+      }
+    }
+    if (std::regex_search(code, exit_command)) {
+      throw InputError(file.string(), number, 0,
+                       "the .geo file calls Exit, which would end nmm as well as gmsh; remove "
+                       "this line (nmm reads the geometry without running gmsh's batch steps)");
+    }
+  }
+}
+
+void open_model(const std::filesystem::path& file, GmshFileKind kind) {
+  const std::string name = file.string();
+  if (kind == GmshFileKind::geo)
+    check_no_exit_command(file);
+  run_gmsh(name, "read the file", [&] {
+    gmsh::clear();
+    gmsh::open(name);
+  });
+}
+
+// ----------------------------------------------------------------------------------------
+// Physical groups
+
+struct PhysicalGroup {
+  int tag = 0;
+  std::string name;
+  std::vector<int> entities;
+};
+
+std::vector<PhysicalGroup> physical_groups(int dim, const std::string& unnamed_prefix) {
+  gmsh::vectorpair dim_tags;
+  gmsh::model::getPhysicalGroups(dim_tags, dim);
+  std::vector<PhysicalGroup> groups;
+  for (const auto& [group_dim, tag] : dim_tags) {
+    PhysicalGroup group;
+    group.tag = tag;
+    gmsh::model::getPhysicalName(group_dim, tag, group.name);
+    if (group.name.empty())
+      group.name = unnamed_prefix + "_" + std::to_string(tag);
+    gmsh::model::getEntitiesForPhysicalGroup(group_dim, tag, group.entities);
+    groups.push_back(std::move(group));
+  }
+  return groups;
+}
+
+std::set<int> entity_tags(int dim) {
+  gmsh::vectorpair dim_tags;
+  gmsh::model::getEntities(dim_tags, dim);
+  std::set<int> tags;
+  for (const auto& dim_tag : dim_tags)
+    tags.insert(dim_tag.second);
+  return tags;
+}
+
+std::string group_names(const std::vector<PhysicalGroup>& groups) {
+  std::string text;
+  for (const PhysicalGroup& group : groups)
+    text += (text.empty() ? "\"" : ", \"") + group.name + '"';
+  return text;
+}
+
+// ----------------------------------------------------------------------------------------
+// Chaining edges (curves between end points, or mesh edges between nodes) into paths and
+// loops. Shared by the loops of geometric surfaces and of meshed (discrete) ones.
+
+struct Chain {
+  /// Edge index and whether it is walked from its first to its second node.
+  std::vector<std::pair<std::size_t, bool>> edges;
+  std::size_t first_node = 0;
+  std::size_t last_node = 0;
+  bool closed = false;
+};
+
+std::vector<Chain> chain_edges(const std::vector<std::array<std::size_t, 2>>& edges) {
+  std::unordered_map<std::size_t, std::vector<std::size_t>> incident;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    incident[edges[e][0]].push_back(e);
+    incident[edges[e][1]].push_back(e);
+  }
+  std::vector<bool> used(edges.size(), false);
+  auto walk = [&](std::size_t edge, std::size_t start) {
+    Chain chain;
+    chain.first_node = start;
+    std::size_t node = start;
+    while (true) {
+      used[edge] = true;
+      const bool forward = edges[edge][0] == node;
+      chain.edges.emplace_back(edge, forward);
+      node = forward ? edges[edge][1] : edges[edge][0];
+      if (node == start) {
+        chain.closed = true;
+        break;
+      }
+      // Where several edges meet (two loops touching), prefer the one that follows the
+      // current edge in the input: gmsh lists a surface's boundary loop by loop.
+      std::optional<std::size_t> next;
+      for (const std::size_t candidate : incident[node]) {
+        if (used[candidate])
+          continue;
+        if (!next || (*next < edge && candidate > edge))
+          next = candidate;
+      }
+      if (!next)
+        break;
+      edge = *next;
+    }
+    chain.last_node = node;
+    return chain;
+  };
+  std::vector<Chain> chains;
+  // Open paths first, started at an end (a node of odd degree), never in their middle.
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    if (used[e])
+      continue;
+    for (const std::size_t end : edges[e]) {
+      if (incident[end].size() % 2 == 1) {
+        chains.push_back(walk(e, end));
+        break;
+      }
+    }
+  }
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    if (!used[e])
+      chains.push_back(walk(e, edges[e][0]));
+  }
+  return chains;
+}
+
+// ----------------------------------------------------------------------------------------
+// Mesh data of discrete entities
+
+/// 2D or 1D elements of one entity as lists of corner (primary) nodes.
+std::vector<std::vector<std::size_t>> element_corners(int dim, int tag) {
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> element_tags;
+  std::vector<std::vector<std::size_t>> node_tags;
+  gmsh::model::mesh::getElements(types, element_tags, node_tags, dim, tag);
+  std::vector<std::vector<std::size_t>> corners;
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    std::string name;
+    int element_dim = 0;
+    int order = 0;
+    int n_nodes = 0;
+    int n_primary = 0;
+    std::vector<double> local_coordinates;
+    gmsh::model::mesh::getElementProperties(types[k], name, element_dim, order, n_nodes,
+                                            local_coordinates, n_primary);
+    if (element_dim != dim || n_nodes <= 0)
+      continue;
+    const auto stride = static_cast<std::size_t>(n_nodes);
+    for (std::size_t first = 0; first + stride <= node_tags[k].size(); first += stride) {
+      const auto begin = node_tags[k].begin() + static_cast<std::ptrdiff_t>(first);
+      corners.emplace_back(begin, begin + n_primary);
+    }
+  }
+  return corners;
+}
+
+/// Coordinates of every mesh node of the current model, by node tag.
+class NodeTable {
+public:
+  const Point3& at(std::size_t tag) {
+    if (!loaded_)
+      load();
+    const auto found = coordinates_.find(tag);
+    if (found == coordinates_.end())
+      throw InputError("gmsh mesh: element refers to node " + std::to_string(tag) +
+                       ", which the file does not define; save the .msh again from gmsh");
+    return found->second;
+  }
+
+private:
+  void load() {
+    std::vector<std::size_t> tags;
+    std::vector<double> coordinates;
+    std::vector<double> parametric;
+    gmsh::model::mesh::getNodes(tags, coordinates, parametric, -1, -1, false, false);
+    coordinates_.reserve(tags.size());
+    for (std::size_t i = 0; i < tags.size(); ++i)
+      coordinates_[tags[i]] =
+          Point3(coordinates[3 * i], coordinates[3 * i + 1], coordinates[3 * i + 2]);
+    loaded_ = true;
+  }
+  std::unordered_map<std::size_t, Point3> coordinates_;
+  bool loaded_ = false;
+};
+
+// ----------------------------------------------------------------------------------------
+// Reading one model: sampled curves (cached per curve), surface loops, named groups.
+
+/// Per initial chord, at most 2^16 subdivisions: enough for a 1e-9 relative tolerance on a
+/// circle, and bounded work on a curve gmsh evaluates badly.
+constexpr int max_subdivision_depth = 16;
+
+double distance_to_segment(const Point3& q, const Point3& a, const Point3& b) {
+  const Point3 ab = b - a;
+  const double length_squared = ab.squaredNorm();
+  if (length_squared == 0.0)
+    return (q - a).norm();
+  const double s = std::clamp((q - a).dot(ab) / length_squared, 0.0, 1.0);
+  return (q - (a + s * ab)).norm();
+}
+
+Point2 planar(const Point3& p) { return {p.x(), p.y()}; }
+
+class ModelReader {
+public:
+  ModelReader(std::string file, double tolerance, double z_limit)
+      : file_(std::move(file)), tolerance_(tolerance), z_limit_(z_limit) {}
+
+  /// The polylines of curve @p tag (one, except for a discrete curve whose mesh is in
+  /// pieces), in the curve's parametric direction, computed once per curve.
+  const std::vector<std::vector<Point2>>& curve(int tag, const std::string& context) {
+    const auto found = curves_.find(tag);
+    if (found != curves_.end())
+      return found->second;
+    std::string type;
+    gmsh::model::getType(1, tag, type);
+    std::vector<std::vector<Point3>> polylines;
+    if (type == "Discrete curve")
+      polylines = discrete_curve(tag, context);
+    else
+      polylines.push_back(parametric_curve(tag, type, context));
+    std::vector<std::vector<Point2>> result;
+    for (const std::vector<Point3>& polyline : polylines) {
+      std::vector<Point2>& points = result.emplace_back();
+      for (const Point3& p : polyline)
+        points.push_back(in_plane(p, context));
+    }
+    return curves_.emplace(tag, std::move(result)).first->second;
+  }
+
+  Polygon surface(int tag, const std::string& group) {
+    std::string type;
+    gmsh::model::getType(2, tag, type);
+    const std::string context =
+        "Physical Surface \"" + group + "\" (gmsh surface " + std::to_string(tag) + ")";
+    std::vector<Loop> loops =
+        type == "Discrete surface" ? discrete_loops(tag, context) : curve_loops(tag, context);
+    if (loops.empty())
+      throw InputError(file_ + ": " + context +
+                       " has no boundary curves; define it from a closed Curve Loop");
+    // The loop enclosing the others has the largest area; validate_physical_mesh() checks
+    // that the holes do lie inside it.
+    const auto outer =
+        std::max_element(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) {
+          return std::abs(signed_area(a)) < std::abs(signed_area(b));
+        });
+    Polygon polygon;
+    polygon.outer = std::move(*outer);
+    loops.erase(outer);
+    polygon.holes = std::move(loops);
+    return polygon;
+  }
+
+  Point2 point(int tag, const std::string& context) {
+    std::vector<double> xyz;
+    gmsh::model::getValue(0, tag, {}, xyz);
+    if (xyz.size() < 3)
+      throw InputError(file_ + ": " + context + ": gmsh cannot give the coordinates of point " +
+                       std::to_string(tag));
+    return in_plane(Point3(xyz[0], xyz[1], xyz[2]), context);
+  }
+
+private:
+  Point2 in_plane(const Point3& p, const std::string& context) const {
+    if (!(std::abs(p.z()) <= z_limit_)) {
+      throw InputError(file_ + ": " + context + ": the point " + point_text(planar(p)) +
+                       " has z = " + number_text(p.z()) +
+                       "; nmm is two-dimensional: draw the whole geometry in the plane z = 0");
+    }
+    return planar(p);
+  }
+
+  std::vector<Point3> evaluate(int tag, const std::vector<double>& parameters) const {
+    std::vector<double> xyz;
+    gmsh::model::getValue(1, tag, parameters, xyz);
+    if (xyz.size() != 3 * parameters.size())
+      throw InputError(file_ + ": gmsh cannot evaluate curve " + std::to_string(tag));
+    std::vector<Point3> points;
+    points.reserve(parameters.size());
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+      points.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    return points;
+  }
+
+  /// The exact coordinates of the gmsh points at the start and end of curve @p tag, matched
+  /// to the curve's values at its parameter bounds (empty for a curve without end points).
+  std::optional<std::array<Point3, 2>>
+  end_points(int tag, const Point3& first, const Point3& last) const {
+    gmsh::vectorpair boundary;
+    gmsh::model::getBoundary({{1, tag}}, boundary, false, false, false);
+    std::vector<Point3> points;
+    for (const auto& dim_tag : boundary) {
+      std::vector<double> xyz;
+      gmsh::model::getValue(0, std::abs(dim_tag.second), {}, xyz);
+      if (xyz.size() == 3)
+        points.emplace_back(xyz[0], xyz[1], xyz[2]);
+    }
+    if (points.empty())
+      return std::nullopt;
+    if (points.size() == 1)
+      return std::array<Point3, 2>{points[0], points[0]};
+    const double straight = (points[0] - first).norm() + (points[1] - last).norm();
+    const double crossed = (points[1] - first).norm() + (points[0] - last).norm();
+    if (straight <= crossed)
+      return std::array<Point3, 2>{points[0], points[1]};
+    return std::array<Point3, 2>{points[1], points[0]};
+  }
+
+  std::vector<Point3>
+  parametric_curve(int tag, const std::string& type, const std::string& context) {
+    std::vector<double> low;
+    std::vector<double> high;
+    gmsh::model::getParametrizationBounds(1, tag, low, high);
+    if (low.empty() || high.empty() || !(high[0] > low[0]))
+      throw InputError(file_ + ": " + context + ": gmsh gives curve " + std::to_string(tag) + " (" +
+                       type + ") no parameter range; redraw the curve");
+    const double t0 = low[0];
+    const double t1 = high[0];
+    const std::vector<Point3> bounds = evaluate(tag, {t0, t1});
+    const auto ends = end_points(tag, bounds[0], bounds[1]);
+    const Point3 start = ends ? (*ends)[0] : bounds[0];
+    const Point3 end = ends ? (*ends)[1] : bounds[1];
+    if (type == "Line")
+      return {start, end};
+
+    // Adaptive subdivision, one level at a time so that gmsh evaluates each level in one
+    // call. A closed curve starts from 4 chords so that its first chord is not a point.
+    const bool closed = (end - start).norm() == 0.0;
+    const int initial = closed ? 4 : 1;
+    std::map<double, Point3> samples;
+    std::vector<double> parameters;
+    for (int i = 0; i <= initial; ++i)
+      parameters.push_back(i == initial ? t1 : t0 + (t1 - t0) * i / initial);
+    const std::vector<Point3> initial_points = evaluate(tag, parameters);
+    for (std::size_t i = 0; i < parameters.size(); ++i)
+      samples.emplace(parameters[i], initial_points[i]);
+
+    struct Piece {
+      double t0;
+      double t1;
+      int depth;
+    };
+    std::vector<Piece> pending;
+    for (int i = 0; i < initial; ++i)
+      pending.push_back({parameters[static_cast<std::size_t>(i)],
+                         parameters[static_cast<std::size_t>(i) + 1], 0});
+    double unresolved = 0.0;
+    while (!pending.empty()) {
+      std::vector<double> inner;
+      inner.reserve(3 * pending.size());
+      for (const Piece& piece : pending) {
+        for (int k = 1; k <= 3; ++k)
+          inner.push_back(piece.t0 + (piece.t1 - piece.t0) * k / 4.0);
+      }
+      const std::vector<Point3> values = evaluate(tag, inner);
+      std::vector<Piece> next;
+      for (std::size_t p = 0; p < pending.size(); ++p) {
+        const Piece& piece = pending[p];
+        const Point3& a = samples.at(piece.t0);
+        const Point3& b = samples.at(piece.t1);
+        double deviation = 0.0;
+        for (std::size_t k = 0; k < 3; ++k)
+          deviation = std::max(deviation, distance_to_segment(values[3 * p + k], a, b));
+        if (deviation <= tolerance_)
+          continue;
+        if (piece.depth >= max_subdivision_depth) {
+          unresolved = std::max(unresolved, deviation);
+          continue;
+        }
+        const double middle = inner[3 * p + 1];
+        samples.emplace(middle, values[3 * p + 1]);
+        next.push_back({piece.t0, middle, piece.depth + 1});
+        next.push_back({middle, piece.t1, piece.depth + 1});
+      }
+      pending = std::move(next);
+    }
+    if (unresolved > 0.0) {
+      throw InputError(file_ + ": " + context + ": curve " + std::to_string(tag) + " (" + type +
+                       ") still deviates by " + number_text(unresolved) +
+                       " m from its chords after " + std::to_string(1 << max_subdivision_depth) +
+                       " subdivisions, more than the curve tolerance of " +
+                       number_text(tolerance_) +
+                       " m; raise the curve tolerance or check that the curve is smooth");
+    }
+    std::vector<Point3> points;
+    points.reserve(samples.size());
+    for (const auto& sample : samples)
+      points.push_back(sample.second);
+    points.front() = start;
+    points.back() = end;
+    return points;
+  }
+
+  std::vector<std::vector<Point3>> discrete_curve(int tag, const std::string& context) {
+    const std::vector<std::vector<std::size_t>> lines = element_corners(1, tag);
+    if (lines.empty()) {
+      throw InputError(file_ + ": " + context + ": curve " + std::to_string(tag) +
+                       " comes from a mesh but has no line elements; mesh it (gmsh -2) and "
+                       "keep its elements when saving (Physical Curve or Mesh.SaveAll = 1)");
+    }
+    std::vector<std::array<std::size_t, 2>> edges;
+    for (const std::vector<std::size_t>& line : lines) {
+      if (line.size() >= 2)
+        edges.push_back({line[0], line[1]});
+    }
+    std::vector<std::vector<Point3>> polylines;
+    for (const Chain& chain : chain_edges(edges)) {
+      std::vector<Point3>& points = polylines.emplace_back();
+      points.push_back(nodes_.at(chain.first_node));
+      for (const auto& [edge, forward] : chain.edges)
+        points.push_back(nodes_.at(edges[edge][forward ? 1 : 0]));
+    }
+    return polylines;
+  }
+
+  std::vector<Loop> curve_loops(int tag, const std::string& context) {
+    gmsh::vectorpair boundary;
+    gmsh::model::getBoundary({{2, tag}}, boundary, false, true, false);
+    // A curve listed twice (a slit traversed both ways) lies inside the surface: not part of
+    // its outline. Curves embedded with "In Surface" are not listed at all.
+    std::map<int, int> count;
+    for (const auto& dim_tag : boundary)
+      ++count[std::abs(dim_tag.second)];
+    std::vector<std::vector<Point2>> pieces;
+    std::vector<int> piece_curve;
+    for (const auto& dim_tag : boundary) {
+      const int curve_tag = std::abs(dim_tag.second);
+      if (count[curve_tag] != 1)
+        continue;
+      for (const std::vector<Point2>& polyline : curve(curve_tag, context)) {
+        std::vector<Point2>& piece = pieces.emplace_back(polyline);
+        if (dim_tag.second < 0)
+          std::reverse(piece.begin(), piece.end());
+        piece_curve.push_back(curve_tag);
+      }
+    }
+    // End points are exact gmsh point coordinates, so equal coordinates mean a shared point.
+    std::map<std::pair<double, double>, std::size_t> node_of;
+    std::vector<Point2> node_point;
+    auto node = [&](const Point2& p) {
+      const auto [it, inserted] = node_of.try_emplace({p.x(), p.y()}, node_point.size());
+      if (inserted)
+        node_point.push_back(p);
+      return it->second;
+    };
+    std::vector<std::array<std::size_t, 2>> edges;
+    for (const std::vector<Point2>& piece : pieces)
+      edges.push_back({node(piece.front()), node(piece.back())});
+
+    std::vector<Loop> loops;
+    std::vector<std::string> loose_ends;
+    std::vector<int> open_curves;
+    for (const Chain& chain : chain_edges(edges)) {
+      if (!chain.closed) {
+        loose_ends.push_back(point_text(node_point[chain.first_node]));
+        loose_ends.push_back(point_text(node_point[chain.last_node]));
+        for (const auto& step : chain.edges)
+          open_curves.push_back(piece_curve[step.first]);
+        continue;
+      }
+      Loop& loop = loops.emplace_back();
+      for (const auto& [edge, forward] : chain.edges) {
+        const std::vector<Point2>& piece = pieces[edge];
+        // Every piece but the last point, which is the next piece's first.
+        if (forward)
+          loop.insert(loop.end(), piece.begin(), piece.end() - 1);
+        else
+          loop.insert(loop.end(), piece.rbegin(), piece.rend() - 1);
+      }
+    }
+    if (!open_curves.empty()) {
+      std::string ends;
+      for (std::size_t i = 0; i < loose_ends.size() && i < 6; ++i)
+        ends += (i > 0 ? (i + 1 == loose_ends.size() ? " and " : ", ") : "") + loose_ends[i];
+      throw InputError(file_ + ": " + context + ": the boundary does not close: curves " +
+                       tag_list(open_curves) + " leave loose ends at " + ends +
+                       "; make consecutive curves of each Curve Loop share their end Point "
+                       "(Coherence in the built-in kernel, BooleanFragments in OpenCASCADE)");
+    }
+    return loops;
+  }
+
+  std::vector<Loop> discrete_loops(int tag, const std::string& context) {
+    const std::vector<std::vector<std::size_t>> elements = element_corners(2, tag);
+    if (elements.empty()) {
+      throw InputError(file_ + ": " + context +
+                       " comes from a mesh but has no 2D elements; mesh it (gmsh -2) before "
+                       "saving the .msh");
+    }
+    // Boundary edges of the surface mesh are those used by one element only; kept in the
+    // order of first use so that loops come out the same on every run.
+    struct EdgeUse {
+      std::array<std::size_t, 2> directed;
+      std::size_t first_use;
+      int count;
+    };
+    std::map<std::pair<std::size_t, std::size_t>, EdgeUse> uses;
+    std::size_t order = 0;
+    for (const std::vector<std::size_t>& element : elements) {
+      for (std::size_t i = 0; i < element.size(); ++i) {
+        const std::size_t a = element[i];
+        const std::size_t b = element[(i + 1) % element.size()];
+        const auto found =
+            uses.try_emplace({std::min(a, b), std::max(a, b)}, EdgeUse{{a, b}, order++, 0}).first;
+        ++found->second.count;
+      }
+    }
+    std::vector<EdgeUse> boundary;
+    for (const auto& use : uses) {
+      if (use.second.count == 1)
+        boundary.push_back(use.second);
+    }
+    std::sort(boundary.begin(), boundary.end(),
+              [](const EdgeUse& a, const EdgeUse& b) { return a.first_use < b.first_use; });
+    std::vector<std::array<std::size_t, 2>> edges;
+    for (const EdgeUse& use : boundary)
+      edges.push_back(use.directed);
+    std::vector<Loop> loops;
+    for (const Chain& chain : chain_edges(edges)) {
+      if (!chain.closed)
+        throw InputError(
+            file_ + ": " + context + ": the boundary of its mesh does not close near " +
+            point_text(planar(nodes_.at(chain.first_node))) + "; save the mesh again from gmsh");
+      Loop& loop = loops.emplace_back();
+      for (const auto& [edge, forward] : chain.edges)
+        loop.push_back(in_plane(nodes_.at(edges[edge][forward ? 0 : 1]), context));
+    }
+    return loops;
+  }
+
+  std::string file_;
+  double tolerance_;
+  double z_limit_;
+  std::map<int, std::vector<std::vector<Point2>>> curves_;
+  NodeTable nodes_;
+};
+
+/// Diagonal (in the plane) of the bounding box of the surfaces of all Physical Surfaces.
+double surfaces_diagonal(const std::vector<PhysicalGroup>& groups) {
+  BoundingBox box;
+  for (const PhysicalGroup& group : groups) {
+    for (const int tag : group.entities) {
+      double x0 = 0, y0 = 0, z0 = 0, x1 = 0, y1 = 0, z1 = 0;
+      gmsh::model::getBoundingBox(2, tag, x0, y0, z0, x1, y1, z1);
+      if (x1 >= x0 && y1 >= y0) {
+        box.extend({x0, y0});
+        box.extend({x1, y1});
+      }
+    }
+  }
+  return box.is_empty() ? 0.0 : box.size().norm();
+}
+
+[[noreturn]] void throw_no_physical_surface(const std::string& file) {
+  const std::set<int> surfaces = entity_tags(2);
+  std::string message = file + ": the geometry has no Physical Surface, so nmm sees no material";
+  if (surfaces.empty()) {
+    message += " (it has no surface at all); define surfaces (Plane Surface from a Curve Loop, "
+               "or Rectangle/Disk with OpenCASCADE) and name them with Physical Surface(\"rock\")"
+               " = {...}";
+  } else {
+    const std::vector<int> tags(surfaces.begin(), surfaces.end());
+    message += "; it has surface(s) " + tag_list(tags) +
+               ": name each material with a line like Physical Surface(\"rock\") = {" +
+               tag_list(tags) + "}; (the name is the material name in the case file)";
+  }
+  const std::string curves = group_names(physical_groups(1, "curve"));
+  if (!curves.empty())
+    message += ". Physical Curves found: " + curves;
+  throw InputError(message);
+}
+
+PhysicalMesh read_open_model(const std::string& file, const GeometryReadOptions& options) {
+  const std::vector<PhysicalGroup> surface_groups = physical_groups(2, "surface");
+  if (surface_groups.empty())
+    throw_no_physical_surface(file);
+  const std::set<int> surfaces = entity_tags(2);
+  for (const PhysicalGroup& group : surface_groups) {
+    for (const int tag : group.entities) {
+      if (surfaces.count(tag) == 0)
+        throw InputError(file + ": Physical Surface \"" + group.name + "\" refers to surface " +
+                         std::to_string(tag) + ", which does not exist; fix the group's list");
+    }
+  }
+  const double diagonal = surfaces_diagonal(surface_groups);
+  const double tolerance =
+      options.curve_tolerance > 0.0 ? options.curve_tolerance : 1.0e-3 * diagonal;
+  // Coordinates written with z = 0 come back as exact zeros; allow only rounding noise.
+  const double z_limit = 1.0e-9 * std::max(diagonal, 1.0);
+  ModelReader reader(file, tolerance, z_limit);
+
+  PhysicalMesh physical;
+  physical.source = file;
+  for (const PhysicalGroup& group : surface_groups) {
+    MaterialRegion& region = physical.regions.emplace_back();
+    region.name = group.name;
+    for (const int tag : group.entities)
+      region.polygons.push_back(reader.surface(tag, group.name));
+  }
+  for (const PhysicalGroup& group : physical_groups(1, "curve")) {
+    NamedCurve& named = physical.curves.emplace_back();
+    named.name = group.name;
+    const std::string context = "Physical Curve \"" + group.name + "\"";
+    for (const int tag : group.entities) {
+      for (const std::vector<Point2>& polyline : reader.curve(tag, context))
+        named.polylines.push_back(polyline);
+    }
+  }
+  for (const PhysicalGroup& group : physical_groups(0, "point")) {
+    NamedPoint& named = physical.points.emplace_back();
+    named.name = group.name;
+    const std::string context = "Physical Point \"" + group.name + "\"";
+    for (const int tag : group.entities)
+      named.points.push_back(reader.point(tag, context));
+  }
+  validate_physical_mesh(physical);
+  return physical;
+}
+
+void check_tolerance(const std::string& file, const GeometryReadOptions& options) {
+  if (!(options.curve_tolerance >= 0.0) || !std::isfinite(options.curve_tolerance)) {
+    throw InputError(file +
+                     ": the curve tolerance must be a finite length >= 0 (0 = automatic: "
+                     "1e-3 of the material's bounding-box diagonal), got " +
+                     number_text(options.curve_tolerance));
+  }
+}
+
+// ----------------------------------------------------------------------------------------
+// Math mesh
+
+/// Triangles of 2D elements of @p surfaces (quads split, high-order nodes dropped), nodes
+/// renumbered 0..n-1 in order of first use, every triangle counter-clockwise.
+MathMesh collect_triangles(const std::string& file, const std::vector<int>& surfaces) {
+  NodeTable nodes;
+  MathMesh mesh;
+  std::unordered_map<std::size_t, int> index_of;
+  auto index = [&](std::size_t tag) {
+    const auto [it, inserted] = index_of.try_emplace(tag, mesh.n_nodes());
+    if (inserted)
+      mesh.nodes.push_back(planar(nodes.at(tag)));
+    return it->second;
+  };
+  auto add = [&](std::size_t a, std::size_t b, std::size_t c) {
+    std::array<int, 3> triangle{index(a), index(b), index(c)};
+    const Point2& p = mesh.nodes[static_cast<std::size_t>(triangle[0])];
+    const Point2& q = mesh.nodes[static_cast<std::size_t>(triangle[1])];
+    const Point2& r = mesh.nodes[static_cast<std::size_t>(triangle[2])];
+    const double twice_area = (q - p).x() * (r - p).y() - (q - p).y() * (r - p).x();
+    if (twice_area == 0.0)
+      throw InputError(file + ": the mesh has a triangle of zero area near " + point_text(p) +
+                       "; mesh the geometry again (or give a larger cover mesh size)");
+    if (twice_area < 0.0)
+      std::swap(triangle[1], triangle[2]);
+    mesh.triangles.push_back(triangle);
+  };
+  for (const int surface : surfaces) {
+    for (const std::vector<std::size_t>& element : element_corners(2, surface)) {
+      if (element.size() == 3) {
+        add(element[0], element[1], element[2]);
+      } else if (element.size() == 4) {
+        add(element[0], element[1], element[2]);
+        add(element[0], element[2], element[3]);
+      }
+    }
+  }
+  return mesh;
+}
+
+[[noreturn]] void throw_too_many_triangles(const std::string& file,
+                                           double size,
+                                           double count,
+                                           double area,
+                                           double max_triangles,
+                                           const char* how) {
+  std::ostringstream message;
+  message << file << ": cover mesh size " << size << " m would make " << how << count
+          << " gmsh triangles for the " << area << " m^2 of material, more than the limit of "
+          << max_triangles
+          << "; increase [cover_mesh] size, or raise [cover_mesh] max_triangles if this is "
+             "intended";
+  throw InputError(message.str());
+}
+
+MathMesh
+triangulate_physical_mesh(const std::string& file, const PhysicalMesh& physical, double size) {
+  MathMesh mesh;
+  run_gmsh(file, "triangulate the material", [&] {
+    gmsh::clear();
+    gmsh::model::add("nmm_math_mesh");
+    // Uniform size: the .geo's own sizes and fields refer to entities that are not in this
+    // model; the case file's size is the only one that counts.
+    gmsh::option::setNumber("Geometry.AutoCoherence", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeMax", size);
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
+    gmsh::option::setNumber("Mesh.MeshSizeFactor", 1.0);
+    gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 1);
+    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 1);
+    gmsh::option::setNumber("Mesh.ElementOrder", 1);
+    gmsh::option::setNumber("Mesh.RecombineAll", 0);
+    gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 0);
+    gmsh::option::setNumber("Mesh.Algorithm", 6);
+
+    // Polygon vertices and edges shared between loops (interfaces between surfaces) become
+    // one gmsh point and one gmsh line, so the mesh conforms across them.
+    std::map<std::pair<double, double>, int> point_tag;
+    std::map<std::pair<int, int>, int> line_tag;
+    auto point = [&](const Point2& p) {
+      const auto found = point_tag.find({p.x(), p.y()});
+      if (found != point_tag.end())
+        return found->second;
+      const int tag = gmsh::model::geo::addPoint(p.x(), p.y(), 0.0, size);
+      point_tag.emplace(std::make_pair(p.x(), p.y()), tag);
+      return tag;
+    };
+    auto curve_loop = [&](const Loop& loop) {
+      std::vector<int> lines;
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        const int a = point(loop[i]);
+        const int b = point(loop[(i + 1) % loop.size()]);
+        const auto found = line_tag.find({std::min(a, b), std::max(a, b)});
+        if (found != line_tag.end()) {
+          lines.push_back(a < b ? found->second : -found->second);
+          continue;
+        }
+        const int tag = gmsh::model::geo::addLine(std::min(a, b), std::max(a, b));
+        line_tag.emplace(std::make_pair(std::min(a, b), std::max(a, b)), tag);
+        lines.push_back(a < b ? tag : -tag);
+      }
+      return gmsh::model::geo::addCurveLoop(lines);
+    };
+    for (const MaterialRegion& region : physical.regions) {
+      for (const Polygon& polygon : region.polygons) {
+        std::vector<int> loops{curve_loop(polygon.outer)};
+        for (const Loop& hole : polygon.holes)
+          loops.push_back(curve_loop(hole));
+        gmsh::model::geo::addPlaneSurface(loops);
+      }
+    }
+    gmsh::model::geo::synchronize();
+    gmsh::model::mesh::generate(2);
+    const std::set<int> surfaces = entity_tags(2);
+    mesh = collect_triangles(file, std::vector<int>(surfaces.begin(), surfaces.end()));
+  });
+  return mesh;
+}
+
+} // namespace
+
+// ------------------------------------------------------------------------------------------
+// GmshSession
+
+GmshSession::GmshSession() {
+  bool expected = false;
+  if (!session_alive.compare_exchange_strong(expected, true)) {
+    throw std::logic_error("nmm::GmshSession: a gmsh session is already alive; gmsh has one "
+                           "global state, so keep a single GmshSession at a time");
+  }
+  const char* locale = std::setlocale(LC_ALL, nullptr);
+  saved_locale_ = locale != nullptr ? locale : "C";
+  try {
+    gmsh::initialize(0, nullptr, false);
+    gmsh::option::setNumber("General.Terminal", 0);
+    // Errors go to the log (read back by run_gmsh) instead of being thrown: an exception out
+    // of gmsh 4.8's .geo parser leaves it unusable for the rest of the process.
+    gmsh::option::setNumber("General.AbortOnError", 0);
+    // Errors and warnings only: the log is copied whenever we look at it.
+    gmsh::option::setNumber("General.Verbosity", 2);
+    gmsh::option::setNumber("General.NumThreads", 1);
+    gmsh::logger::start();
+  } catch (...) {
+    std::setlocale(LC_ALL, saved_locale_.c_str());
+    session_alive = false;
+    throw;
+  }
+}
+
+GmshSession::~GmshSession() {
+  try {
+    gmsh::logger::stop();
+    gmsh::finalize();
+  } catch (...) {
+    // A destructor must not throw; gmsh has nothing left for us to release.
+  }
+  std::setlocale(LC_ALL, saved_locale_.c_str());
+  session_alive = false;
+}
+
+bool GmshSession::is_alive() noexcept { return session_alive.load(); }
+
+// ------------------------------------------------------------------------------------------
+
+PhysicalMesh read_physical_mesh(const std::filesystem::path& file,
+                                const GeometryReadOptions& options) {
+  const std::string name = file.string();
+  check_tolerance(name, options);
+  const GmshFileKind kind = check_geometry_file(file);
+  std::optional<GmshSession> own_session;
+  if (!GmshSession::is_alive())
+    own_session.emplace();
+  open_model(file, kind);
+  return read_open_model(name, options);
+}
+
+MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
+                             double size,
+                             double max_triangles,
+                             const GeometryReadOptions& options) {
+  const std::string name = file.string();
+  if (!(size > 0.0) || !std::isfinite(size)) {
+    throw InputError(name + ": cover mesh size must be a positive number of metres, got " +
+                     number_text(size));
+  }
+  if (!(max_triangles > 0.0)) {
+    throw InputError(name + ": [cover_mesh] max_triangles must be positive, got " +
+                     number_text(max_triangles));
+  }
+  check_tolerance(name, options);
+  const GmshFileKind kind = check_geometry_file(file);
+  std::optional<GmshSession> own_session;
+  if (!GmshSession::is_alive())
+    own_session.emplace();
+  open_model(file, kind);
+
+  if (kind == GmshFileKind::msh) {
+    // The file's own elements: the physical mesh read from the same file has these
+    // triangles' boundary edges as its loops, so they cover the material exactly.
+    const std::vector<PhysicalGroup> groups = physical_groups(2, "surface");
+    if (groups.empty())
+      throw_no_physical_surface(name);
+    std::set<int> surfaces;
+    for (const PhysicalGroup& group : groups)
+      surfaces.insert(group.entities.begin(), group.entities.end());
+    MathMesh mesh = collect_triangles(name, std::vector<int>(surfaces.begin(), surfaces.end()));
+    if (mesh.triangles.empty())
+      throw InputError(name + ": the Physical Surfaces have no triangles or quadrangles; mesh "
+                              "the geometry in 2D (gmsh -2) before saving the .msh");
+    if (static_cast<double>(mesh.n_triangles()) > max_triangles) {
+      double area = 0.0;
+      for (const auto& t : mesh.triangles) {
+        area += std::abs(signed_area(std::array<Point2, 3>{
+            mesh.nodes[static_cast<std::size_t>(t[0])], mesh.nodes[static_cast<std::size_t>(t[1])],
+            mesh.nodes[static_cast<std::size_t>(t[2])]}));
+      }
+      throw_too_many_triangles(name, size, mesh.n_triangles(), area, max_triangles, "");
+    }
+    return mesh;
+  }
+
+  const PhysicalMesh physical = read_open_model(name, options);
+  const double area = material_area(physical);
+  // Triangles of edge `size` have area sqrt(3)/4 size^2; gmsh's are a little smaller, so this
+  // underestimates and refuses only meshes that would clearly be too large.
+  const double estimate = area / (std::sqrt(3.0) / 4.0 * size * size);
+  if (estimate > max_triangles)
+    throw_too_many_triangles(name, size, std::round(estimate), area, max_triangles, "about ");
+  MathMesh mesh = triangulate_physical_mesh(name, physical, size);
+  if (static_cast<double>(mesh.n_triangles()) > max_triangles)
+    throw_too_many_triangles(name, size, mesh.n_triangles(), area, max_triangles, "");
+  return mesh;
+}
+
+} // namespace nmm

@@ -1,0 +1,36 @@
+// Two separate squares in one Physical Surface, a third square in an unnamed group, and a
+// Physical Point holding a corner and a free point.
+Point(1) = {0, 0, 0};
+Point(2) = {1, 0, 0};
+Point(3) = {1, 1, 0};
+Point(4) = {0, 1, 0};
+Point(5) = {2, 0, 0};
+Point(6) = {3, 0, 0};
+Point(7) = {3, 1, 0};
+Point(8) = {2, 1, 0};
+Point(9) = {4, 0, 0};
+Point(10) = {5, 0, 0};
+Point(11) = {5, 1, 0};
+Point(12) = {4, 1, 0};
+Point(13) = {0.25, 0.75, 0};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Line(5) = {5, 6};
+Line(6) = {6, 7};
+Line(7) = {7, 8};
+Line(8) = {8, 5};
+Line(9) = {9, 10};
+Line(10) = {10, 11};
+Line(11) = {11, 12};
+Line(12) = {12, 9};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, 8};
+Plane Surface(2) = {2};
+Curve Loop(3) = {9, 10, 11, 12};
+Plane Surface(3) = {3};
+Physical Surface("blocks") = {1, 2};
+Physical Surface(5) = {3};
+Physical Point("load") = {7, 13};

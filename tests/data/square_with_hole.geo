@@ -1,0 +1,22 @@
+// Unit square with a circular hole of radius 0.25 at its centre, drawn as two arcs.
+r = 0.25;
+Point(1) = {0, 0, 0, 0.1};
+Point(2) = {1, 0, 0, 0.1};
+Point(3) = {1, 1, 0, 0.1};
+Point(4) = {0, 1, 0, 0.1};
+Point(5) = {0.5, 0.5, 0, 0.1};
+Point(6) = {0.5 + r, 0.5, 0, 0.1};
+Point(7) = {0.5 - r, 0.5, 0, 0.1};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Circle(5) = {6, 5, 7};
+Circle(6) = {7, 5, 6};
+Curve Loop(1) = {1, 2, 3, 4};
+Curve Loop(2) = {5, 6};
+Plane Surface(1) = {1, 2};
+Physical Surface("rock") = {1};
+Physical Curve("base") = {1};
+Physical Curve("hole") = {5, 6};
+Physical Point("corner") = {3};
