@@ -1,0 +1,140 @@
+// SPDX-License-Identifier: MIT
+#include "manifold/boundary_conditions.hpp"
+
+#include "mesh/error.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace nmm {
+
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+void add_local(const std::vector<int>& dofs, const Eigen::VectorXd& local, Eigen::VectorXd& f) {
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    f(dofs[i]) += local(static_cast<Eigen::Index>(i));
+}
+
+std::string point_text(const Point2& p) {
+  std::ostringstream out;
+  out.precision(6);
+  out << '(' << p.x() << ", " << p.y() << ')';
+  return out.str();
+}
+
+} // namespace
+
+std::vector<SupportPoint> curve_support_points(const Model& model,
+                                               int curve,
+                                               bool fix_x,
+                                               bool fix_y,
+                                               SupportMethod method,
+                                               const std::string& origin) {
+  std::vector<SupportPoint> points;
+  for (const CurvePiece& piece : model.curve_pieces[at(curve)]) {
+    for (const int element : {piece.left_element, piece.right_element}) {
+      if (element < 0)
+        continue;
+      std::vector<Point2> where{piece.a, piece.b};
+      if (model.order > 0)
+        where.push_back(0.5 * (piece.a + piece.b));
+      for (const Point2& x : where)
+        points.push_back({{element, x}, fix_x, fix_y, method, origin});
+    }
+  }
+  return points;
+}
+
+std::vector<LinearConstraint> support_constraints(const Model& model,
+                                                  const std::vector<SupportPoint>& supports) {
+  std::vector<LinearConstraint> rows;
+  for (const SupportPoint& s : supports) {
+    if (s.method != SupportMethod::exact || s.point.element < 0)
+      continue;
+    const NmmShape shape = model.shape(s.point.element);
+    const Eigen::VectorXd phi = shape.values_at(s.point.position);
+    const std::vector<int> dofs = model.element_dofs(s.point.element);
+    for (int component = 0; component < 2; ++component) {
+      if ((component == 0 && !s.fix_x) || (component == 1 && !s.fix_y))
+        continue;
+      LinearConstraint row;
+      row.origin = s.origin + " at " + point_text(s.point.position);
+      for (int a = 0; a < shape.n_shapes(); ++a) {
+        if (phi(a) != 0.0)
+          row.terms.emplace_back(dofs[at(2 * a + component)], phi(a));
+      }
+      rows.push_back(std::move(row));
+    }
+  }
+  return rows;
+}
+
+Eigen::MatrixXd support_spring(const Model& model, const SupportPoint& support, double stiffness) {
+  const Eigen::MatrixXd t =
+      model.shape(support.point.element).interpolation_at(support.point.position);
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(t.cols(), t.cols());
+  if (support.fix_x)
+    k += stiffness * t.row(0).transpose() * t.row(0);
+  if (support.fix_y)
+    k += stiffness * t.row(1).transpose() * t.row(1);
+  return k;
+}
+
+Eigen::VectorXd element_load(const Model& model,
+                             int element,
+                             const NmmElementIntegrals& integrals,
+                             std::span<const BodyLoad> body_loads,
+                             double time) {
+  const ElasticMaterial& material = model.material_of(element);
+  Point2 force = Point2::Zero();
+  for (const BodyLoad& load : body_loads)
+    force += load.ramp.at(time) * material.density * load.acceleration;
+  Eigen::VectorXd f = integrals.body_force(force, material.thickness_factor());
+  const ModelElement& e = model.elements[at(element)];
+  if (!e.stress.coefficients.isZero())
+    f += integrals.initial_stress_load(e.stress, material.thickness_factor());
+  return f;
+}
+
+void add_point_load(const Model& model, const PointLoad& load, double time, Eigen::VectorXd& f) {
+  const double factor = load.ramp.at(time);
+  if (factor == 0.0 || load.point.element < 0)
+    return;
+  const Eigen::MatrixXd t = model.shape(load.point.element).interpolation_at(load.point.position);
+  add_local(model.element_dofs(load.point.element), t.transpose() * (factor * load.force), f);
+}
+
+void add_curve_load(const Model& model, const CurveLoad& load, double time, Eigen::VectorXd& f) {
+  const double factor = load.ramp.at(time);
+  if (factor == 0.0)
+    return;
+  // Two-point Gauss on each piece: exact for the shape functions of degree <= 2 times a
+  // constant traction (degree 2 <= 3).
+  const double g = 0.5 / std::sqrt(3.0);
+  for (const CurvePiece& piece : model.curve_pieces[at(load.curve)]) {
+    const bool left = piece.left_element >= 0;
+    const int element = left ? piece.left_element : piece.right_element;
+    if (element < 0)
+      continue;
+    const Point2 along = piece.b - piece.a;
+    const double length = along.norm();
+    if (length == 0.0)
+      continue;
+    // Outward normal: to the right of a -> b when the material is on the left.
+    const Point2 right_normal = Point2(along.y(), -along.x()) / length;
+    const Point2 outward = left ? right_normal : Point2(-right_normal);
+    const Point2 traction = load.is_pressure ? Point2(-load.pressure * outward) : load.traction;
+    const double thickness = model.material_of(element).thickness_factor();
+    const NmmShape shape = model.shape(element);
+    Eigen::VectorXd local = Eigen::VectorXd::Zero(shape.n_dofs());
+    for (const double s : {0.5 - g, 0.5 + g}) {
+      const Eigen::MatrixXd t = shape.interpolation_at(piece.a + s * along);
+      local += 0.5 * length * thickness * factor * (t.transpose() * traction);
+    }
+    add_local(model.element_dofs(element), local, f);
+  }
+}
+
+} // namespace nmm

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: MIT
+// manifold/boundary_conditions.hpp — supports and loads of a model: fixed points by exact
+// constraints or by Shi's stiff springs (1997, eq. 2.26-2.27), point loads (eq. 2.11-2.12),
+// body forces (eq. 2.13-2.14), tractions and pressures on curves.
+#pragma once
+
+#include "manifold/linear_constraint.hpp"
+#include "manifold/model.hpp"
+
+#include <Eigen/Core>
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace nmm {
+
+/// How a support holds its points.
+enum class SupportMethod {
+  exact,  ///< the displacement is eliminated exactly (DofMap); the default
+  penalty ///< Shi's two stiff springs per point, stiffness SupportSet::spring_stiffness
+};
+
+/// A material point held in x, y or both.
+struct SupportPoint {
+  MaterialPoint point;
+  bool fix_x = false;
+  bool fix_y = false;
+  SupportMethod method = SupportMethod::exact;
+  std::string origin; ///< "curve \"base\"" or "point \"anchor\"", for messages
+};
+
+/// Linear ramp of a load: 0 before start, linear to 1 at end, 1 after (s).
+struct Ramp {
+  double start = 0.0;
+  double end = 0.0;
+  [[nodiscard]] double at(double time) const noexcept {
+    if (time >= end)
+      return 1.0;
+    if (time <= start)
+      return 0.0;
+    return (time - start) / (end - start);
+  }
+};
+
+/// Gravity or any uniform acceleration field acting on every element, m/s².
+struct BodyLoad {
+  Point2 acceleration = Point2::Zero();
+  Ramp ramp;
+};
+
+/// A force on a material point, N (per metre of thickness in plane strain).
+struct PointLoad {
+  MaterialPoint point;
+  Point2 force = Point2::Zero();
+  Ramp ramp;
+};
+
+/// A traction (Pa, vector) or a pressure (Pa, positive pushing into the material) on a named
+/// curve; applied to the material side of each piece (the left one where both sides are
+/// material: a bonded line).
+struct CurveLoad {
+  int curve = -1;
+  bool is_pressure = false;
+  Point2 traction = Point2::Zero();
+  double pressure = 0.0;
+  Ramp ramp;
+};
+
+/// The support points of named curve @p curve: the ends of every piece (and its mid-point
+/// for order-1 covers, where the displacement along a piece is quadratic), on each material
+/// side, so that the whole curve is held: with exact elimination the displacement is zero
+/// along every piece, not only at points.
+[[nodiscard]] std::vector<SupportPoint> curve_support_points(const Model& model,
+                                                             int curve,
+                                                             bool fix_x,
+                                                             bool fix_y,
+                                                             SupportMethod method,
+                                                             const std::string& origin);
+
+/// Constraint rows of the exact supports (one per held component and point).
+[[nodiscard]] std::vector<LinearConstraint>
+support_constraints(const Model& model, const std::vector<SupportPoint>& supports);
+
+/// The spring matrix of a penalty support point: stiffness (Tx^T Tx and/or Ty^T Ty) on
+/// the element's raw unknowns (Shi eq. 2.27).
+[[nodiscard]] Eigen::MatrixXd
+support_spring(const Model& model, const SupportPoint& support, double stiffness);
+
+/// The local load vector of element @p element at time @p time from its integrals: every
+/// body load (Shi eq. 2.14, density times acceleration) and its initial-stress load
+/// -∫ B^T sigma0 (eq. 2.10).
+[[nodiscard]] Eigen::VectorXd element_load(const Model& model,
+                                           int element,
+                                           const NmmElementIntegrals& integrals,
+                                           std::span<const BodyLoad> body_loads,
+                                           double time);
+
+/// Adds a point or curve load at time @p time to the raw load vector @p f.
+void add_point_load(const Model& model, const PointLoad& load, double time, Eigen::VectorXd& f);
+void add_curve_load(const Model& model, const CurveLoad& load, double time, Eigen::VectorXd& f);
+
+} // namespace nmm

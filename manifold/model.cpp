@@ -1,0 +1,457 @@
+// SPDX-License-Identifier: MIT
+#include "manifold/model.hpp"
+
+#include "mesh/error.hpp"
+
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+
+namespace nmm {
+
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+/// Crossing-number test, with points on an edge counted inside.
+bool contains(const Loop& loop, const Point2& p) {
+  bool inside = false;
+  for (std::size_t i = 0, j = loop.size() - 1; i < loop.size(); j = i++) {
+    const Point2& a = loop[i];
+    const Point2& b = loop[j];
+    if ((a.y() > p.y()) != (b.y() > p.y())) {
+      const double x = a.x() + (p.y() - a.y()) * (b.x() - a.x()) / (b.y() - a.y());
+      if (p.x() < x)
+        inside = !inside;
+    }
+  }
+  return inside;
+}
+
+double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const Point2 ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (p - (a + t * ab)).norm();
+}
+
+double distance_to_polygon(const Polygon& polygon, const Point2& p) {
+  double best = std::numeric_limits<double>::infinity();
+  auto visit = [&](const Loop& loop) {
+    for (std::size_t i = 0; i < loop.size(); ++i)
+      best = std::min(best, distance_to_segment(p, loop[i], loop[(i + 1) % loop.size()]));
+  };
+  visit(polygon.outer);
+  for (const Loop& hole : polygon.holes)
+    visit(hole);
+  return best;
+}
+
+bool polygon_contains(const Polygon& polygon, const Point2& p) {
+  if (polygon.outer.size() < 3 || !contains(polygon.outer, p))
+    return false;
+  for (const Loop& hole : polygon.holes) {
+    if (contains(hole, p))
+      return false;
+  }
+  return true;
+}
+
+/// J v: v turned by 90 degrees.
+Point2 turned(const Point2& v) { return {-v.y(), v.x()}; }
+
+class SimpleUnionFind {
+public:
+  explicit SimpleUnionFind(std::size_t n) : parent_(n) {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
+  int find(int i) {
+    while (parent_[at(i)] != i) {
+      parent_[at(i)] = parent_[at(parent_[at(i)])];
+      i = parent_[at(i)];
+    }
+    return i;
+  }
+  void unite(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b)
+      parent_[at(std::max(a, b))] = std::min(a, b);
+  }
+
+private:
+  std::vector<int> parent_;
+};
+
+} // namespace
+
+std::array<Point2, 3> Model::triangle(int element) const {
+  const auto& c = elements[at(element)].covers;
+  return {covers[at(c[0])].position, covers[at(c[1])].position, covers[at(c[2])].position};
+}
+
+NmmShape Model::shape(int element) const { return NmmShape(triangle(element), order, scale); }
+
+std::vector<int> Model::element_dofs(int element) const {
+  const int per_cover = dofs_per_cover();
+  std::vector<int> dofs;
+  dofs.reserve(at(3 * per_cover));
+  for (const int c : elements[at(element)].covers) {
+    for (int j = 0; j < per_cover; ++j)
+      dofs.push_back(dof(c, j));
+  }
+  return dofs;
+}
+
+std::vector<double> Model::element_values(int element, const Eigen::VectorXd& raw) const {
+  std::vector<double> values;
+  for (const int d : element_dofs(element))
+    values.push_back(raw(d));
+  return values;
+}
+
+Point2 Model::displacement(int element, const Point2& x, const Eigen::VectorXd& raw) const {
+  return shape(element).displacement_at(x, element_values(element, raw));
+}
+
+int Model::find_element(const Point2& x, double tolerance) const {
+  int nearest = -1;
+  double nearest_distance = tolerance;
+  for (int e = 0; e < n_elements(); ++e) {
+    for (const Polygon& polygon : elements[at(e)].polygons) {
+      if (polygon_contains(polygon, x))
+        return e;
+      const double d = distance_to_polygon(polygon, x);
+      if (d <= nearest_distance) {
+        nearest_distance = d;
+        nearest = e;
+      }
+    }
+  }
+  return nearest;
+}
+
+std::vector<LinearConstraint> Model::extension_relations() const {
+  std::vector<LinearConstraint> relations;
+  // One reference point per block for the order-1 gradient average (see the header).
+  std::map<int, Point2> reference;
+  for (const ModelCover& cover : covers) {
+    if (cover.extension_element >= 0)
+      reference.emplace(cover.block, cover.position);
+  }
+  for (int c = 0; c < n_covers(); ++c) {
+    const ModelCover& cover = covers[at(c)];
+    if (cover.extension_element < 0)
+      continue;
+    const int root = cover.extension_element;
+    const NmmShape root_shape = shape(root);
+    const std::vector<int> root_dofs = element_dofs(root);
+    const Eigen::VectorXd phi = root_shape.values_at(cover.position);
+    const std::string origin = "tiny cover of math node " + std::to_string(cover.node);
+    for (int component = 0; component < 2; ++component) {
+      LinearConstraint value;
+      value.origin = origin;
+      value.preferred_slave = dof(c, component);
+      value.terms.emplace_back(dof(c, component), 1.0);
+      for (int a = 0; a < root_shape.n_shapes(); ++a)
+        value.terms.emplace_back(root_dofs[at(2 * a + component)], -phi(a));
+      relations.push_back(std::move(value));
+    }
+    if (order == 0)
+      continue;
+    const Point2 c0 = reference.at(cover.block);
+    auto local = [&](const Point2& x) {
+      const Point2 d = x - root_shape.origin();
+      return Eigen::Vector3d(1.0, d.x(), d.y());
+    };
+    const Eigen::Vector3d at_node = local(cover.position);
+    const Eigen::Vector3d at_reference = local(c0);
+    for (int axis = 0; axis < 2; ++axis) {
+      const auto& derivative = axis == 0 ? root_shape.dx() : root_shape.dy();
+      for (int component = 0; component < 2; ++component) {
+        LinearConstraint gradient;
+        gradient.origin = origin;
+        const int slave = dof(c, 2 + 2 * axis + component);
+        gradient.preferred_slave = slave;
+        gradient.terms.emplace_back(slave, 1.0);
+        for (int a = 0; a < root_shape.n_shapes(); ++a) {
+          const double g = 0.5 * scale * derivative.col(a).dot(at_node + at_reference);
+          gradient.terms.emplace_back(root_dofs[at(2 * a + component)], -g);
+        }
+        relations.push_back(std::move(gradient));
+      }
+    }
+  }
+  return relations;
+}
+
+std::vector<LinearConstraint> Model::dependency_relations() const {
+  std::vector<LinearConstraint> relations;
+  if (order == 0)
+    return relations;
+  // Elements of each block.
+  std::map<int, std::vector<int>> block_elements;
+  for (int e = 0; e < n_elements(); ++e)
+    block_elements[elements[at(e)].block].push_back(e);
+  for (const auto& [block, members] : block_elements) {
+    // Rigid clusters: elements sharing two covers (a side of their triangles).
+    SimpleUnionFind clusters(members.size());
+    std::map<std::pair<int, int>, int> first_with_side;
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      const auto& c = elements[at(members[i])].covers;
+      for (int k = 0; k < 3; ++k) {
+        const int a = c[at(k)];
+        const int b = c[at((k + 1) % 3)];
+        const auto [it, fresh] = first_with_side.emplace(
+            std::make_pair(std::min(a, b), std::max(a, b)), static_cast<int>(i));
+        if (!fresh)
+          clusters.unite(it->second, static_cast<int>(i));
+      }
+    }
+    std::map<int, int> cluster_index;
+    std::vector<Point2> cluster_reference;
+    std::map<int, std::vector<int>> clusters_of_cover;
+    for (std::size_t i = 0; i < members.size(); ++i) {
+      const int root = clusters.find(static_cast<int>(i));
+      auto [it, fresh] = cluster_index.emplace(root, static_cast<int>(cluster_reference.size()));
+      if (fresh)
+        cluster_reference.push_back(covers[at(elements[at(members[i])].covers[0])].position);
+      for (const int c : elements[at(members[i])].covers) {
+        auto& list = clusters_of_cover[c];
+        if (std::find(list.begin(), list.end(), it->second) == list.end())
+          list.push_back(it->second);
+      }
+    }
+    // Gradient g_c of the flex at cover c seen from cluster k: g0 + s J (x_c - ref_k) / L.
+    const int n_clusters = static_cast<int>(cluster_reference.size());
+    auto gradient_row = [&](int c, int k, int axis) {
+      Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(3 * n_clusters);
+      const Point2 j = turned((covers[at(c)].position - cluster_reference[at(k)]) / scale);
+      row(3 * k + axis) = 1.0;
+      row(3 * k + 2) = axis == 0 ? j.x() : j.y();
+      return row;
+    };
+    std::vector<Eigen::RowVectorXd> rows;
+    for (const auto& [c, list] : clusters_of_cover) {
+      const bool pinned = covers[at(c)].extension_element >= 0;
+      for (int axis = 0; axis < 2; ++axis) {
+        if (pinned)
+          rows.push_back(gradient_row(c, list[0], axis));
+        for (std::size_t k = 1; k < list.size(); ++k)
+          rows.push_back(gradient_row(c, list[0], axis) - gradient_row(c, list[k], axis));
+      }
+    }
+    // Null space of the cluster equations: the flexes.
+    Eigen::MatrixXd flexes;
+    if (rows.empty()) {
+      flexes = Eigen::MatrixXd::Identity(3 * n_clusters, 3 * n_clusters);
+    } else {
+      Eigen::MatrixXd a(static_cast<Eigen::Index>(rows.size()), 3 * n_clusters);
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        a.row(static_cast<Eigen::Index>(r)) = rows[r];
+      const Eigen::JacobiSVD<Eigen::MatrixXd> svd(a, Eigen::ComputeFullV);
+      const Eigen::VectorXd& sigma = svd.singularValues();
+      const double largest = sigma.size() > 0 ? sigma(0) : 0.0;
+      int rank = 0;
+      for (Eigen::Index i = 0; i < sigma.size(); ++i)
+        rank += sigma(i) > 1e-10 * largest;
+      flexes = svd.matrixV().rightCols(3 * n_clusters - rank);
+    }
+    if (flexes.cols() == 0)
+      continue;
+    // The flexes as gradients at the free covers, and the unknowns that pin them down.
+    std::vector<int> free_covers;
+    for (const auto& [c, list] : clusters_of_cover) {
+      if (covers[at(c)].extension_element < 0)
+        free_covers.push_back(c);
+    }
+    Eigen::MatrixXd g(flexes.cols(), static_cast<Eigen::Index>(2 * free_covers.size()));
+    for (std::size_t i = 0; i < free_covers.size(); ++i) {
+      const int c = free_covers[i];
+      const int k = clusters_of_cover.at(c)[0];
+      for (int axis = 0; axis < 2; ++axis)
+        g.col(static_cast<Eigen::Index>(2 * i) + axis) =
+            (gradient_row(c, k, axis) * flexes).transpose();
+    }
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(g);
+    for (Eigen::Index f = 0; f < qr.rank(); ++f) {
+      const Eigen::Index column = qr.colsPermutation().indices()(f);
+      const int c = free_covers[at(static_cast<int>(column / 2))];
+      const int axis = static_cast<int>(column % 2);
+      for (int component = 0; component < 2; ++component) {
+        LinearConstraint fix;
+        fix.origin = "order-1 dependency in block " + std::to_string(block);
+        fix.terms.emplace_back(dof(c, 2 + 2 * axis + component), 1.0);
+        fix.preferred_slave = fix.terms.front().first;
+        relations.push_back(std::move(fix));
+      }
+    }
+  }
+  return relations;
+}
+
+namespace {
+
+/// Rotates every coefficient tensor of a linear stress field by the angle @p omega, and the
+/// field's spatial argument with it (sigma'(x') = R sigma(R^T x') R^T).
+LinearField3 rotated(const LinearField3& field, double omega) {
+  const double c = std::cos(omega);
+  const double s = std::sin(omega);
+  Eigen::Matrix2d r;
+  r << c, -s, s, c;
+  auto tensor = [](const Eigen::Vector3d& v) {
+    Eigen::Matrix2d t;
+    t << v(0), v(2), v(2), v(1);
+    return t;
+  };
+  auto vector = [](const Eigen::Matrix2d& t) { return Eigen::Vector3d(t(0, 0), t(1, 1), t(0, 1)); };
+  LinearField3 result;
+  result.origin = field.origin;
+  result.coefficients.col(0) = vector(r * tensor(field.coefficients.col(0)) * r.transpose());
+  for (int j = 0; j < 2; ++j) {
+    const Eigen::Matrix2d mixed =
+        r(j, 0) * tensor(field.coefficients.col(1)) + r(j, 1) * tensor(field.coefficients.col(2));
+    result.coefficients.col(1 + j) = vector(r * mixed * r.transpose());
+  }
+  return result;
+}
+
+} // namespace
+
+void Model::accumulate_stress(const Eigen::VectorXd& raw) {
+  for (int e = 0; e < n_elements(); ++e) {
+    ModelElement& element = elements[at(e)];
+    const NmmShape s = shape(e);
+    const std::vector<double> d = element_values(e, raw);
+    const LinearField3 strain = s.strain(d);
+    // Rigid rotation of the step at the element's centre: (dv/dx - du/dy) / 2.
+    double du_dy = 0.0;
+    double dv_dx = 0.0;
+    for (int a = 0; a < s.n_shapes(); ++a) {
+      du_dy += s.dy()(0, a) * d[at(2 * a)];
+      dv_dx += s.dx()(0, a) * d[at(2 * a + 1)];
+    }
+    LinearField3 stress = rotated(element.stress.about(s.origin()), 0.5 * (dv_dx - du_dy));
+    stress.coefficients += elasticity_matrix(material_of(e)) * strain.coefficients;
+    element.stress = stress;
+  }
+}
+
+void Model::move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points) {
+  NMM_ASSERT(raw.size() == n_dofs(), "wrong size of the displacement vector");
+  std::vector<NmmShape> shapes;
+  shapes.reserve(elements.size());
+  std::vector<std::vector<double>> values(elements.size());
+  for (int e = 0; e < n_elements(); ++e) {
+    shapes.push_back(shape(e));
+    values[at(e)] = element_values(e, raw);
+  }
+  auto moved = [&](int e, const Point2& x) {
+    return Point2(x + shapes[at(e)].displacement_at(x, values[at(e)]));
+  };
+  for (int e = 0; e < n_elements(); ++e) {
+    ModelElement& element = elements[at(e)];
+    CompensatedSum area_sum;
+    for (Polygon& polygon : element.polygons) {
+      for (Point2& p : polygon.outer)
+        p = moved(e, p);
+      for (Loop& hole : polygon.holes) {
+        for (Point2& p : hole)
+          p = moved(e, p);
+      }
+      area_sum += area(polygon);
+    }
+    element.area = area_sum.value();
+  }
+  for (BoundaryLoop& loop : loops) {
+    for (std::size_t k = 0; k < loop.vertices.size(); ++k) {
+      const int e = loop.edges[k].element;
+      if (e >= 0)
+        loop.vertices[k] = moved(e, loop.vertices[k]);
+    }
+  }
+  for (auto& pieces : curve_pieces) {
+    for (CurvePiece& piece : pieces) {
+      const int e = piece.left_element >= 0 ? piece.left_element : piece.right_element;
+      if (e >= 0) {
+        piece.a = moved(e, piece.a);
+        piece.b = moved(e, piece.b);
+      }
+    }
+  }
+  for (MaterialPoint& point : points) {
+    if (point.element >= 0)
+      point.position = moved(point.element, point.position);
+  }
+  // A cover moves with its cover function at its own node: its constant term.
+  for (int c = 0; c < n_covers(); ++c)
+    covers[at(c)].position += Point2(raw(dof(c, 0)), raw(dof(c, 1)));
+  // The stress field is attached to the material: its origin (the triangle's centroid, see
+  // accumulate_stress()) moves with the element, its coefficients stay.
+  for (int e = 0; e < n_elements(); ++e) {
+    const auto t = triangle(e);
+    elements[at(e)].stress.origin = (t[0] + t[1] + t[2]) / 3.0;
+  }
+}
+
+Model make_model(const CoverSystem& cover_system,
+                 const MathMesh& math,
+                 std::vector<ElasticMaterial> materials,
+                 const ModelOptions& options) {
+  NMM_ASSERT(options.order >= 0 && options.order <= max_cover_order, "unsupported cover order");
+  Model model;
+  model.order = options.order;
+  model.materials = std::move(materials);
+  for (const ElasticMaterial& m : model.materials)
+    validate_material(m);
+  if (options.scale > 0.0) {
+    model.scale = options.scale;
+  } else {
+    CompensatedSum length;
+    for (const auto& t : math.triangles) {
+      for (int k = 0; k < 3; ++k)
+        length += (math.nodes[at(t[at(k)])] - math.nodes[at(t[at((k + 1) % 3)])]).norm();
+    }
+    model.scale = math.triangles.empty()
+                      ? 1.0
+                      : length.value() / (3.0 * static_cast<double>(math.triangles.size()));
+  }
+  model.covers.reserve(cover_system.covers.size());
+  for (const Cover& c : cover_system.covers) {
+    ModelCover cover;
+    cover.node = c.node;
+    cover.block = c.block;
+    cover.extension_element = c.extension_element;
+    cover.position = math.nodes[at(c.node)];
+    model.covers.push_back(cover);
+  }
+  model.elements.reserve(cover_system.elements.size());
+  for (const Element& e : cover_system.elements) {
+    ModelElement element;
+    element.triangle = e.triangle;
+    element.material = e.material;
+    element.block = e.block;
+    element.covers = e.covers;
+    element.polygons = e.polygons;
+    element.area = e.area;
+    NMM_ASSERT(e.material >= 0 && at(e.material) < model.materials.size(),
+               "element material out of range");
+    Point2 centroid = Point2::Zero();
+    for (const int c : e.covers)
+      centroid += model.covers[at(c)].position / 3.0;
+    element.stress.origin = centroid;
+    element.stress.coefficients.col(0) = model.materials[at(e.material)].initial_stress;
+    model.elements.push_back(std::move(element));
+  }
+  model.blocks = cover_system.blocks;
+  model.loops = cover_system.loops;
+  model.curve_pieces = cover_system.curve_pieces;
+  return model;
+}
+
+} // namespace nmm

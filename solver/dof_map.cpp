@@ -1,0 +1,179 @@
+// SPDX-License-Identifier: MIT
+#include "solver/dof_map.hpp"
+
+#include "mesh/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+namespace nmm {
+
+namespace {
+
+/// A slave: raw unknown = sum coefficient * raw free unknown + constant.
+struct Expression {
+  std::vector<std::pair<int, double>> terms;
+  double constant = 0.0;
+  std::string origin;
+};
+
+} // namespace
+
+DofMap::DofMap(int n_raw, std::span<const LinearConstraint> constraints, double tolerance)
+    : reduced_of_(static_cast<std::size_t>(n_raw), 0), slaves_(static_cast<std::size_t>(n_raw)) {
+  std::vector<int> slave_of(static_cast<std::size_t>(n_raw), -1);
+  std::vector<Expression> expressions;
+  // For each raw unknown, the expressions that may mention it (stale entries are skipped).
+  std::vector<std::vector<int>> users(static_cast<std::size_t>(n_raw));
+  stats_.constraints = static_cast<int>(constraints.size());
+
+  for (const LinearConstraint& row : constraints) {
+    double scale = 0.0;
+    for (const auto& [raw, c] : row.terms) {
+      NMM_ASSERT(raw >= 0 && raw < n_raw, "constraint on an unknown out of range");
+      scale = std::max(scale, std::abs(c));
+    }
+    // Substitute the slaves chosen so far: the row in free unknowns only.
+    std::map<int, double> reduced;
+    double rhs = row.value;
+    for (const auto& [raw, c] : row.terms) {
+      const int s = slave_of[static_cast<std::size_t>(raw)];
+      if (s < 0) {
+        reduced[raw] += c;
+        continue;
+      }
+      const Expression& e = expressions[static_cast<std::size_t>(s)];
+      rhs -= c * e.constant;
+      for (const auto& [other, d] : e.terms)
+        reduced[other] += c * d;
+    }
+    double largest = 0.0;
+    for (auto it = reduced.begin(); it != reduced.end();) {
+      if (std::abs(it->second) <= tolerance * scale) {
+        it = reduced.erase(it);
+      } else {
+        largest = std::max(largest, std::abs(it->second));
+        ++it;
+      }
+    }
+    if (reduced.empty()) {
+      if (std::abs(rhs) > tolerance * std::max(std::abs(row.value), 1.0)) {
+        std::ostringstream message;
+        message << "contradictory constraints: " << row.origin
+                << " cannot hold together with the constraints before it (residual " << rhs
+                << "); remove one of the supports";
+        throw InputError(message.str());
+      }
+      ++stats_.redundant;
+      continue;
+    }
+    int pivot = -1;
+    const auto preferred = reduced.find(row.preferred_slave);
+    if (preferred != reduced.end() && std::abs(preferred->second) >= 0.1 * largest) {
+      pivot = preferred->first;
+    } else {
+      for (const auto& [raw, c] : reduced) {
+        if (std::abs(c) == largest) {
+          pivot = raw;
+          break;
+        }
+      }
+    }
+    const double a = reduced[pivot];
+    Expression fresh;
+    fresh.constant = rhs / a;
+    fresh.origin = row.origin;
+    for (const auto& [raw, c] : reduced) {
+      if (raw != pivot)
+        fresh.terms.emplace_back(raw, -c / a);
+    }
+    // Back-substitute the new slave into every expression that mentions it.
+    for (const int u : users[static_cast<std::size_t>(pivot)]) {
+      Expression& e = expressions[static_cast<std::size_t>(u)];
+      const auto found = std::find_if(e.terms.begin(), e.terms.end(),
+                                      [&](const auto& t) { return t.first == pivot; });
+      if (found == e.terms.end())
+        continue;
+      const double c = found->second;
+      e.terms.erase(found);
+      e.constant += c * fresh.constant;
+      std::map<int, double> merged(e.terms.begin(), e.terms.end());
+      for (const auto& [raw, d] : fresh.terms) {
+        if (merged.find(raw) == merged.end())
+          users[static_cast<std::size_t>(raw)].push_back(u);
+        merged[raw] += c * d;
+      }
+      e.terms.assign(merged.begin(), merged.end());
+    }
+    users[static_cast<std::size_t>(pivot)].clear();
+    const int index = static_cast<int>(expressions.size());
+    for (const auto& [raw, c] : fresh.terms)
+      users[static_cast<std::size_t>(raw)].push_back(index);
+    slave_of[static_cast<std::size_t>(pivot)] = index;
+    expressions.push_back(std::move(fresh));
+    ++stats_.eliminated;
+  }
+
+  for (int raw = 0; raw < n_raw; ++raw) {
+    if (slave_of[static_cast<std::size_t>(raw)] < 0)
+      reduced_of_[static_cast<std::size_t>(raw)] = n_reduced_++;
+    else
+      reduced_of_[static_cast<std::size_t>(raw)] = -1;
+  }
+  for (int raw = 0; raw < n_raw; ++raw) {
+    const int s = slave_of[static_cast<std::size_t>(raw)];
+    if (s < 0)
+      continue;
+    const Expression& e = expressions[static_cast<std::size_t>(s)];
+    DofExpansion& out = slaves_[static_cast<std::size_t>(raw)];
+    out.constant = e.constant;
+    for (const auto& [free, c] : e.terms) {
+      if (c != 0.0)
+        out.terms.emplace_back(reduced_of_[static_cast<std::size_t>(free)], c);
+    }
+  }
+}
+
+DofExpansion DofMap::expansion(int raw) const {
+  const int r = reduced(raw);
+  if (r >= 0)
+    return {{{r, 1.0}}, 0.0};
+  return slaves_[static_cast<std::size_t>(raw)];
+}
+
+Eigen::VectorXd DofMap::expand(const Eigen::VectorXd& reduced_values) const {
+  NMM_ASSERT(reduced_values.size() == n_reduced_, "wrong size of reduced vector");
+  Eigen::VectorXd raw(n_raw());
+  for (int i = 0; i < n_raw(); ++i) {
+    const int r = reduced(i);
+    if (r >= 0) {
+      raw(i) = reduced_values(r);
+      continue;
+    }
+    const DofExpansion& e = slaves_[static_cast<std::size_t>(i)];
+    double v = e.constant;
+    for (const auto& [j, c] : e.terms)
+      v += c * reduced_values(j);
+    raw(i) = v;
+  }
+  return raw;
+}
+
+Eigen::VectorXd DofMap::restrict(const Eigen::VectorXd& raw) const {
+  NMM_ASSERT(raw.size() == n_raw(), "wrong size of raw vector");
+  Eigen::VectorXd result = Eigen::VectorXd::Zero(n_reduced_);
+  for (int i = 0; i < n_raw(); ++i) {
+    const int r = reduced(i);
+    if (r >= 0) {
+      result(r) += raw(i);
+      continue;
+    }
+    for (const auto& [j, c] : slaves_[static_cast<std::size_t>(i)].terms)
+      result(j) += c * raw(i);
+  }
+  return result;
+}
+
+} // namespace nmm

@@ -1,0 +1,120 @@
+// SPDX-License-Identifier: MIT
+// solver/time_stepper.hpp — Shi's time steps (1997, eq. 2.17-2.25; chapter 8): assemble
+// K + 2M/dt² with the inertia load 2M v0/dt, solve for the step displacement, update
+// velocities, stresses and geometry; static analysis with the velocity reset every step,
+// and a single solve per step (no mass) when nothing can touch; step control from the
+// maximum step displacement (section 8.5).
+#pragma once
+
+#include "manifold/boundary_conditions.hpp"
+#include "manifold/model.hpp"
+#include "solver/dof_map.hpp"
+#include "solver/linear_solver.hpp"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace nmm {
+
+/// Dynamic (velocity carried over) or static (Shi's static: velocity reset every step).
+enum class TimeIntegration { dynamic, static_reset };
+
+/// Options of the time stepper.
+struct StepperOptions {
+  TimeIntegration integration = TimeIntegration::dynamic;
+  /// Fixed time step in s; empty: automatic from max_step_displacement (Shi 8.5).
+  std::optional<double> time_step;
+  /// Largest allowed step displacement as a fraction of the model size (Shi's g2).
+  double max_step_displacement = 0.01;
+  /// Stiffness of penalty supports, N/m (Shi's p, 40 E by default from the case file).
+  double spring_stiffness = 0.0;
+  /// How often a step may be cut (to a half, in automatic mode) before the run stops.
+  int max_step_cuts = 10;
+};
+
+/// What stays defined through the run: supports, loads and the material points to follow.
+struct Scene {
+  std::vector<SupportPoint> supports;
+  std::vector<BodyLoad> body_loads;
+  std::vector<PointLoad> point_loads;
+  std::vector<CurveLoad> curve_loads;
+  /// Material points followed for monitors (moved with the material every step).
+  std::vector<MaterialPoint> monitors;
+};
+
+/// One completed step (a row of history.csv).
+struct StepReport {
+  long step = 0;     ///< 1-based
+  double time = 0.0; ///< at the end of the step, s
+  double dt = 0.0;   ///< s
+  int open_close_iterations = 0;
+  int contacts = 0;
+  int step_cuts = 0;             ///< times this step was cut and redone
+  double kinetic_energy = 0.0;   ///< J (per metre in plane strain)
+  double max_displacement = 0.0; ///< largest step displacement, m
+};
+
+/// Work counters, for summary.json (issue 8: "skip what the scene does not need").
+struct StepperCounters {
+  long steps = 0;
+  long step_cuts = 0;
+  long contact_searches = 0;
+  long pattern_builds = 0;
+  long stress_updates = 0;
+};
+
+/// Advances a model through time steps.
+class TimeStepper {
+public:
+  /// @throws InputError for a scene that cannot be solved: a dynamic analysis with a
+  ///         massless material, or a static one with a body that nothing holds (naming the
+  ///         material and a point of the body).
+  TimeStepper(Model& model, Scene scene, StepperOptions options);
+  ~TimeStepper();
+  TimeStepper(const TimeStepper&) = delete;
+  TimeStepper& operator=(const TimeStepper&) = delete;
+
+  /// Sets the velocity of every cover from a velocity field v(x) = v0 + omega J (x - centre)
+  /// per block (material initial_velocity and initial_angular_velocity).
+  void set_rigid_velocities(const std::vector<Point2>& block_velocity,
+                            const std::vector<double>& block_angular_velocity);
+
+  /// One time step ending at most at @p until (s). @throws NumericalError when the step
+  /// cannot be solved even after max_step_cuts cuts, with what went wrong.
+  StepReport step(double until);
+
+  /// Raw velocity of every unknown (m/s).
+  [[nodiscard]] const Eigen::VectorXd& velocity() const noexcept { return velocity_; }
+  [[nodiscard]] double time() const noexcept { return time_; }
+  [[nodiscard]] const Scene& scene() const noexcept { return scene_; }
+  [[nodiscard]] const StepperCounters& counters() const noexcept { return counters_; }
+  [[nodiscard]] const SolverCounters& solver_counters() const;
+  /// Number of unknowns of the linear system.
+  [[nodiscard]] int n_unknowns() const;
+  /// Velocity of the material at @p x in @p element.
+  [[nodiscard]] Point2 velocity_at(int element, const Point2& x) const;
+  /// Warnings gathered during the run (e.g. a fixed time step exceeding the displacement
+  /// limit), each reported once.
+  [[nodiscard]] const std::vector<std::string>& warnings() const noexcept { return warnings_; }
+  /// The model size used for max_step_displacement (m).
+  [[nodiscard]] double model_size() const noexcept { return model_size_; }
+
+private:
+  struct Impl;
+  Model& model_;
+  Scene scene_;
+  StepperOptions options_;
+  Eigen::VectorXd velocity_;
+  double time_ = 0.0;
+  long step_ = 0;
+  double model_size_ = 1.0;
+  StepperCounters counters_;
+  std::vector<std::string> warnings_;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace nmm

@@ -1,0 +1,229 @@
+// SPDX-License-Identifier: MIT
+// Verification against closed forms: patch test, FEM equivalence, free fall (issue 4).
+#include "verification_support.hpp"
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+namespace nmm {
+namespace {
+
+using testing::elastic;
+using testing::line;
+using testing::make_setup;
+using testing::rectangle;
+
+/// Displacement of every element vertex in one static step: moves a copy of the polygons.
+struct VertexMotion {
+  Point2 before;
+  Point2 after;
+};
+
+std::vector<VertexMotion> vertices(const Model& before, const Model& after) {
+  std::vector<VertexMotion> result;
+  for (std::size_t e = 0; e < before.elements.size(); ++e) {
+    for (std::size_t p = 0; p < before.elements[e].polygons.size(); ++p) {
+      const Loop& a = before.elements[e].polygons[p].outer;
+      const Loop& b = after.elements[e].polygons[p].outer;
+      for (std::size_t k = 0; k < a.size(); ++k)
+        result.push_back({a[k], b[k]});
+    }
+  }
+  return result;
+}
+
+class PatchTest : public ::testing::TestWithParam<int> {};
+
+TEST_P(PatchTest, UniformStressIsExactOnANonConformingMesh) {
+  // A 2 m x 1 m plate, plane stress, pulled by sigma on x = 2, held in x on x = 0 and in y on
+  // y = 0. Exact: sxx = sigma, u = sigma x / E, v = -nu sigma y / E. The field is linear, so
+  // order 0 (and order 1) covers represent it exactly even though the regular math mesh
+  // ignores the plate's edges: the discrete solution must be the exact one.
+  // Tolerance 1e-9 relative: a linear solve of condition ~1e6 at double precision.
+  const int order = GetParam();
+  const double sigma = 2.0e6;
+  const ElasticMaterial material = elastic(5.0e9, 0.25, 2600.0, PlaneCondition::stress);
+  testing::Setup s =
+      make_setup({rectangle("rock", 0.0, 0.0, 2.0, 1.0)},
+                 {line("left", {0.0, 0.0}, {0.0, 1.0}), line("right", {2.0, 0.0}, {2.0, 1.0}),
+                  line("bottom", {0.0, 0.0}, {2.0, 0.0})},
+                 {}, nullptr, 0.23, material, order);
+  Scene scene;
+  auto left = curve_support_points(s.model, 0, true, false, SupportMethod::exact, "left");
+  auto bottom = curve_support_points(s.model, 2, false, true, SupportMethod::exact, "bottom");
+  scene.supports.insert(scene.supports.end(), left.begin(), left.end());
+  scene.supports.insert(scene.supports.end(), bottom.begin(), bottom.end());
+  scene.curve_loads.push_back({1, false, {sigma, 0.0}, 0.0, {}});
+  StepperOptions options;
+  options.integration = TimeIntegration::static_reset;
+  const Model before = s.model;
+  TimeStepper stepper(s.model, scene, options);
+  (void)stepper.step(1.0);
+  for (int e = 0; e < s.model.n_elements(); ++e) {
+    const LinearField3& stress = s.model.elements[static_cast<std::size_t>(e)].stress;
+    const Eigen::Vector3d at_centre = stress.at(stress.origin);
+    EXPECT_NEAR(at_centre(0), sigma, 1e-9 * sigma) << "element " << e;
+    EXPECT_NEAR(at_centre(1), 0.0, 1e-9 * sigma) << "element " << e;
+    EXPECT_NEAR(at_centre(2), 0.0, 1e-9 * sigma) << "element " << e;
+  }
+  const double scale = sigma * 2.0 / material.young;
+  for (const VertexMotion& v : vertices(before, s.model)) {
+    const Point2 exact(sigma * v.before.x() / material.young,
+                       -material.poisson * sigma * v.before.y() / material.young);
+    EXPECT_NEAR((v.after - v.before - exact).norm(), 0.0, 1e-9 * scale);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Orders, PatchTest, ::testing::Values(0, 1));
+
+/// Independent P1 FEM: stiffness of a triangle from its B matrix (Zienkiewicz), plane strain.
+Eigen::Matrix<double, 6, 6> p1_stiffness(const std::array<Point2, 3>& x, const Eigen::Matrix3d& d) {
+  const double twice =
+      (x[1] - x[0]).x() * (x[2] - x[0]).y() - (x[1] - x[0]).y() * (x[2] - x[0]).x();
+  Eigen::Matrix<double, 3, 6> b = Eigen::Matrix<double, 3, 6>::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const Point2& p = x[static_cast<std::size_t>((k + 1) % 3)];
+    const Point2& q = x[static_cast<std::size_t>((k + 2) % 3)];
+    b(0, 2 * k) = (p.y() - q.y()) / twice;
+    b(1, 2 * k + 1) = (q.x() - p.x()) / twice;
+    b(2, 2 * k) = (q.x() - p.x()) / twice;
+    b(2, 2 * k + 1) = (p.y() - q.y()) / twice;
+  }
+  return 0.5 * twice * b.transpose() * d * b;
+}
+
+TEST(FemEquivalence, ConformingOrderZeroReproducesIndependentP1Fem) {
+  // A conforming math mesh (perturbed structured triangles), no joints, order 0: NMM is P1
+  // FEM (DESIGN.md "special covers"). Left edge fixed, self-weight and a traction on the
+  // right edge. Tolerance 1e-12 relative: the same linear system up to assembly order.
+  const int nx = 8;
+  const int ny = 4;
+  MathMesh math;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      double x = 2.0 * i / nx;
+      double y = 1.0 * j / ny;
+      if (i > 0 && i < nx && j > 0 && j < ny) { // interior nodes moved off the grid
+        x += 0.04 * std::sin(3.0 * i + 7.0 * j);
+        y += 0.03 * std::cos(5.0 * i - 2.0 * j);
+      }
+      math.nodes.emplace_back(x, y);
+    }
+  }
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int a = (nx + 1) * j + i;
+      math.triangles.push_back({a, a + 1, a + nx + 2});
+      math.triangles.push_back({a, a + nx + 2, a + nx + 1});
+    }
+  }
+  const ElasticMaterial material = elastic(2.0e10, 0.3, 2500.0, PlaneCondition::strain);
+  testing::Setup s =
+      make_setup({rectangle("rock", 0.0, 0.0, 2.0, 1.0)},
+                 {line("left", {0.0, 0.0}, {0.0, 1.0}), line("right", {2.0, 0.0}, {2.0, 1.0})}, {},
+                 &math, 0.0, material, 0);
+  ASSERT_EQ(s.model.n_covers(), math.n_nodes());
+  Scene scene;
+  scene.supports = curve_support_points(s.model, 0, true, true, SupportMethod::exact, "left");
+  scene.body_loads.push_back({{0.0, -9.81}, {}});
+  scene.curve_loads.push_back({1, false, {1.0e5, -3.0e5}, 0.0, {}});
+  StepperOptions options;
+  options.integration = TimeIntegration::static_reset;
+  std::vector<Point2> before;
+  for (const ModelCover& c : s.model.covers)
+    before.push_back(c.position);
+  TimeStepper stepper(s.model, scene, options);
+  (void)stepper.step(1.0);
+
+  // The reference: textbook P1 assembly, consistent loads, elimination of x = 0 nodes.
+  const Eigen::Matrix3d d = elasticity_matrix(material);
+  const int n = 2 * math.n_nodes();
+  std::vector<Eigen::Triplet<double>> triplets;
+  Eigen::VectorXd f = Eigen::VectorXd::Zero(n);
+  for (const auto& t : math.triangles) {
+    const std::array<Point2, 3> x{math.nodes[static_cast<std::size_t>(t[0])],
+                                  math.nodes[static_cast<std::size_t>(t[1])],
+                                  math.nodes[static_cast<std::size_t>(t[2])]};
+    const Eigen::Matrix<double, 6, 6> k = p1_stiffness(x, d);
+    const double area =
+        0.5 * ((x[1] - x[0]).x() * (x[2] - x[0]).y() - (x[1] - x[0]).y() * (x[2] - x[0]).x());
+    for (int a = 0; a < 3; ++a) {
+      f(2 * t[static_cast<std::size_t>(a)] + 1) += -9.81 * material.density * area / 3.0;
+      for (int b = 0; b < 3; ++b)
+        for (int i = 0; i < 2; ++i)
+          for (int j = 0; j < 2; ++j)
+            triplets.emplace_back(2 * t[static_cast<std::size_t>(a)] + i,
+                                  2 * t[static_cast<std::size_t>(b)] + j, k(2 * a + i, 2 * b + j));
+    }
+  }
+  for (int j = 0; j < ny; ++j) { // right edge: nodes (nx, j) and (nx, j + 1), length 1/ny
+    for (const int node : {(nx + 1) * j + nx, (nx + 1) * (j + 1) + nx}) {
+      f(2 * node) += 1.0e5 * 0.5 / ny;
+      f(2 * node + 1) += -3.0e5 * 0.5 / ny;
+    }
+  }
+  Eigen::SparseMatrix<double> k(n, n);
+  k.setFromTriplets(triplets.begin(), triplets.end());
+  for (int j = 0; j <= ny; ++j) { // fixed: unit rows and columns
+    const int node = (nx + 1) * j;
+    for (int i = 0; i < 2; ++i) {
+      const int dof = 2 * node + i;
+      k.prune([dof](int r, int c, double) { return r != dof && c != dof; });
+      k.coeffRef(dof, dof) = 1.0;
+      f(dof) = 0.0;
+    }
+  }
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(k);
+  const Eigen::VectorXd u = solver.solve(f);
+  double largest = u.cwiseAbs().maxCoeff();
+  for (int c = 0; c < s.model.n_covers(); ++c) {
+    const int node = s.model.covers[static_cast<std::size_t>(c)].node;
+    const Point2 moved =
+        s.model.covers[static_cast<std::size_t>(c)].position - before[static_cast<std::size_t>(c)];
+    EXPECT_NEAR(moved.x(), u(2 * node), 1e-12 * largest) << "node " << node;
+    EXPECT_NEAR(moved.y(), u(2 * node + 1), 1e-12 * largest) << "node " << node;
+  }
+}
+
+class FreeFall : public ::testing::TestWithParam<int> {};
+
+TEST_P(FreeFall, IsExactAfterOneSecond) {
+  // A free block of rock under gravity, dt = 1 ms (a usual DDA step): Shi's constant-
+  // acceleration step (eq. 2.17) integrates a constant acceleration exactly, so after 1 s
+  // the drop is g/2 and the speed g, to rounding: 1e-12 relative after 1000 steps.
+  // Why this bound holds: the rounding of the stiffness (K 1 = 0 only to 1e-16 E) enters the
+  // rigid motion amplified by kappa = E dt^2 / (rho h^2), here about 50; with dt = 10 ms the
+  // same block has kappa = 5000 and drifts by 1e-11 (docs/formulation.md, "Rounding").
+  const ElasticMaterial material = elastic(5.0e9, 0.25, 2600.0, PlaneCondition::strain);
+  testing::Setup s = make_setup({rectangle("block", 0.0, 0.0, 1.0, 0.5)}, {}, {}, nullptr, 0.21,
+                                material, GetParam());
+  Scene scene;
+  scene.body_loads.push_back({{0.0, -9.81}, {}});
+  scene.monitors.push_back({s.model.find_element({0.5, 0.25}, 1e-9), {0.5, 0.25}});
+  StepperOptions options;
+  options.time_step = 1e-3;
+  TimeStepper stepper(s.model, scene, options);
+  StepReport last;
+  while (stepper.time() < 1.0 - 1e-12)
+    last = stepper.step(1.0);
+  EXPECT_EQ(last.step, 1000);
+  EXPECT_NEAR(stepper.time(), 1.0, 1e-12);
+  const MaterialPoint& p = stepper.scene().monitors[0];
+  EXPECT_NEAR(p.position.x(), 0.5, 1e-12);
+  EXPECT_NEAR(p.position.y(), 0.25 - 0.5 * 9.81, 1e-12 * 4.905);
+  EXPECT_NEAR(stepper.velocity_at(p.element, p.position).y(), -9.81, 1e-12 * 9.81);
+  const double mass = material.density * 0.5;
+  const double kinetic = 0.5 * mass * 9.81 * 9.81;
+  EXPECT_NEAR(last.kinetic_energy, kinetic, 2e-12 * kinetic);
+  // No stress in free fall; rounding leaves 1e-8 of the weight's scale rho g h.
+  for (const ModelElement& e : s.model.elements)
+    EXPECT_LT(e.stress.coefficients.col(0).cwiseAbs().maxCoeff(), 1e-8 * 2600.0 * 9.81 * 0.5);
+}
+
+INSTANTIATE_TEST_SUITE_P(Orders, FreeFall, ::testing::Values(0, 1));
+
+} // namespace
+} // namespace nmm
