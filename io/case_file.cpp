@@ -690,7 +690,7 @@ BoundarySpec read_boundary(Context& context, const toml::table& table) {
   const std::size_t fix = view.choice("fix", fixed_components, 2);
   spec.fix_x = fix != 1;
   spec.fix_y = fix != 0;
-  spec.method = static_cast<BoundaryMethod>(view.choice("method", boundary_methods, 0));
+  spec.method = static_cast<SupportMethod>(view.choice("method", boundary_methods, 0));
   return spec;
 }
 

@@ -4,6 +4,8 @@
 // DESIGN.md's contract "Case file (TOML)".
 #pragma once
 
+#include "manifold/boundary_conditions.hpp"
+#include "manifold/material.hpp"
 #include "mesh/geometry.hpp"
 
 #include <Eigen/Core>
@@ -25,15 +27,6 @@ enum class CoverMeshKind {
 
 /// `[materials.NAME] model`: which kind of cover the region is discretised with.
 enum class MaterialModel { nmm, dda, vem };
-
-/// `[materials.NAME] plane`: the 2D idealisation of the material.
-enum class PlaneCondition { strain, stress };
-
-/// `[[boundary]] method`: how a fixed displacement is imposed.
-enum class BoundaryMethod {
-  exact,  ///< the fixed dof are eliminated from the system
-  penalty ///< Shi's stiff springs (fixed points), stiffness from [analysis] penalty
-};
 
 /// `[[load]]`: which of the four load forms an entry is.
 enum class LoadKind {
@@ -62,7 +55,8 @@ struct CoverMeshSpec {
   /// Refuse to build a math mesh with more triangles than this (guards against a size
   /// given in millimetres), > 0.
   std::int64_t max_triangles = 5'000'000;
-  /// Covers smaller than this fraction of their math node's star are merged, in [0, 0.5).
+  /// Covers smaller than this fraction of their math node's star get no unknowns of their
+  /// own but the extension of a nearby element's field (docs/cover-mesher.md), in [0, 0.5).
   double min_cover_area_ratio = 1e-3;
   /// Largest chord deviation when gmsh curves are sampled to polylines (m); 0 = automatic.
   double curve_tolerance = 0.0;
@@ -118,7 +112,8 @@ struct BoundarySpec {
   /// Which components are fixed (at least one is true).
   bool fix_x = false;
   bool fix_y = false;
-  BoundaryMethod method = BoundaryMethod::exact;
+  /// `method`: exact elimination or Shi's stiff springs (stiffness from [analysis] penalty).
+  SupportMethod method = SupportMethod::exact;
   /// Line of this `[[boundary]]` header in the case file.
   int line = 0;
 };

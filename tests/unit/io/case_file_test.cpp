@@ -119,7 +119,7 @@ TEST(CaseFile, DesignExampleParsesToItsValues) {
   EXPECT_TRUE(spec.boundaries[0].is_curve);
   EXPECT_TRUE(spec.boundaries[0].fix_x);
   EXPECT_TRUE(spec.boundaries[0].fix_y);
-  EXPECT_EQ(spec.boundaries[0].method, BoundaryMethod::exact);
+  EXPECT_EQ(spec.boundaries[0].method, SupportMethod::exact);
   EXPECT_EQ(spec.boundaries[0].line, 27);
 
   ASSERT_EQ(spec.loads.size(), 2u);
@@ -276,7 +276,7 @@ TEST(CaseFile, InlineTablesAndDottedKeysAreOrdinaryTables) {
   EXPECT_EQ(boundary.target, "A");
   EXPECT_FALSE(boundary.fix_x);
   EXPECT_TRUE(boundary.fix_y);
-  EXPECT_EQ(boundary.method, BoundaryMethod::penalty);
+  EXPECT_EQ(boundary.method, SupportMethod::penalty);
 }
 
 TEST(CaseFile, CurveLoadsAndRamps) {
