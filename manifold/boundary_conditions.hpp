@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -21,16 +22,8 @@ enum class SupportMethod {
   penalty ///< Shi's two stiff springs per point, stiffness SupportSet::spring_stiffness
 };
 
-/// A material point held in x, y or both.
-struct SupportPoint {
-  MaterialPoint point;
-  bool fix_x = false;
-  bool fix_y = false;
-  SupportMethod method = SupportMethod::exact;
-  std::string origin; ///< "curve \"base\"" or "point \"anchor\"", for messages
-};
-
-/// Linear ramp of a load: 0 before start, linear to 1 at end, 1 after (s).
+/// Linear ramp of a load or an imposed displacement: 0 before start, linear to 1 at end,
+/// 1 after (s).
 struct Ramp {
   double start = 0.0;
   double end = 0.0;
@@ -41,6 +34,20 @@ struct Ramp {
       return 0.0;
     return (time - start) / (end - start);
   }
+};
+
+/// A material point held in x, y or both, at zero displacement or at an imposed one.
+struct SupportPoint {
+  MaterialPoint point;
+  bool fix_x = false;
+  bool fix_y = false;
+  SupportMethod method = SupportMethod::exact;
+  std::string origin; ///< "curve \"base\"" or "point \"anchor\"", for messages
+  /// Where the point was at the start: the imposed displacement is measured from here.
+  Point2 start = Point2::Zero();
+  /// Imposed total displacement of the held components (m), reached along `ramp`.
+  Point2 displacement = Point2::Zero();
+  Ramp ramp;
 };
 
 /// Gravity or any uniform acceleration field acting on every element, m/s².
@@ -58,13 +65,18 @@ struct PointLoad {
 
 /// A traction (Pa, vector) or a pressure (Pa, positive pushing into the material) on a named
 /// curve; applied to the material side of each piece (the left one where both sides are
-/// material: a bonded line).
+/// material: a bonded line). Either may vary along the curve.
 struct CurveLoad {
   int curve = -1;
   bool is_pressure = false;
   Point2 traction = Point2::Zero();
   double pressure = 0.0;
   Ramp ramp;
+  /// Optional traction field added to `traction` (Pa), evaluated at the current position.
+  std::function<Point2(const Point2&)> traction_at;
+  /// Optional pressure field added to `pressure` (Pa), evaluated at the current position
+  /// (e.g. water pressure growing with depth).
+  std::function<double(const Point2&)> pressure_at;
 };
 
 /// The support points of named curve @p curve: the ends of every piece (and its mid-point
@@ -78,14 +90,21 @@ struct CurveLoad {
                                                              SupportMethod method,
                                                              const std::string& origin);
 
-/// Constraint rows of the exact supports (one per held component and point).
+/// Constraint rows of the exact supports for a step ending at @p time (one per held
+/// component and point): the step displacement of the point is what remains of its imposed
+/// displacement, ramp(time) u_imposed - (x - x_start), so that a held point never drifts.
 [[nodiscard]] std::vector<LinearConstraint>
-support_constraints(const Model& model, const std::vector<SupportPoint>& supports);
+support_constraints(const Model& model, const std::vector<SupportPoint>& supports, double time);
 
 /// The spring matrix of a penalty support point: stiffness (Tx^T Tx and/or Ty^T Ty) on
 /// the element's raw unknowns (Shi eq. 2.27).
 [[nodiscard]] Eigen::MatrixXd
 support_spring(const Model& model, const SupportPoint& support, double stiffness);
+
+/// The load of a penalty support pulling its point towards its imposed displacement at
+/// @p time: stiffness T^T (ramp(time) u_imposed - (x - x_start)) on the held components.
+[[nodiscard]] Eigen::VectorXd
+support_spring_load(const Model& model, const SupportPoint& support, double stiffness, double time);
 
 /// The local load vector of element @p element at time @p time from its integrals: every
 /// body load (Shi eq. 2.14, density times acceleration) and its initial-stress load

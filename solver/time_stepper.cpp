@@ -212,7 +212,7 @@ StepReport TimeStepper::step(double until) {
     // Constraints and the reduction of every element.
     std::vector<LinearConstraint> constraints = model_.extension_relations();
     constraints.insert(constraints.end(), impl_->dependencies.begin(), impl_->dependencies.end());
-    const std::vector<LinearConstraint> supports = support_constraints(model_, scene_.supports);
+    const std::vector<LinearConstraint> supports = support_constraints(model_, scene_.supports, t1);
     constraints.insert(constraints.end(), supports.begin(), supports.end());
     const DofMap map(model_.n_dofs(), constraints);
 
@@ -310,6 +310,11 @@ StepReport TimeStepper::step(double until) {
     for (std::size_t s = 0; s < spring_of.size(); ++s) {
       const SupportPoint& support = scene_.supports[at(spring_of[s])];
       const Eigen::MatrixXd spring = support_spring(model_, support, options_.spring_stiffness);
+      const Eigen::VectorXd pull =
+          support_spring_load(model_, support, options_.spring_stiffness, t1);
+      const std::vector<int>& spring_dofs = element_raw[at(support.point.element)];
+      for (std::size_t i = 0; i < spring_dofs.size(); ++i)
+        f(spring_dofs[i]) += pull(static_cast<Eigen::Index>(i));
       const Reduction& r = reductions[model_.elements.size() + s];
       const int plan = static_cast<int>(model_.elements.size() + s);
       if (r.transform.size() == 0)

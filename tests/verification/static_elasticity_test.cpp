@@ -56,7 +56,7 @@ TEST_P(PatchTest, UniformStressIsExactOnANonConformingMesh) {
   auto bottom = curve_support_points(s.model, 2, false, true, SupportMethod::exact, "bottom");
   scene.supports.insert(scene.supports.end(), left.begin(), left.end());
   scene.supports.insert(scene.supports.end(), bottom.begin(), bottom.end());
-  scene.curve_loads.push_back({1, false, {sigma, 0.0}, 0.0, {}});
+  scene.curve_loads.push_back(testing::traction_load(1, {sigma, 0.0}));
   StepperOptions options;
   options.integration = TimeIntegration::static_reset;
   const Model before = s.model;
@@ -129,7 +129,7 @@ TEST(FemEquivalence, ConformingOrderZeroReproducesIndependentP1Fem) {
   Scene scene;
   scene.supports = curve_support_points(s.model, 0, true, true, SupportMethod::exact, "left");
   scene.body_loads.push_back({{0.0, -9.81}, {}});
-  scene.curve_loads.push_back({1, false, {1.0e5, -3.0e5}, 0.0, {}});
+  scene.curve_loads.push_back(testing::traction_load(1, {1.0e5, -3.0e5}));
   StepperOptions options;
   options.integration = TimeIntegration::static_reset;
   std::vector<Point2> before;

@@ -10,6 +10,9 @@
 #include "mesh/physical_mesh.hpp"
 #include "solver/time_stepper.hpp"
 
+#include <Eigen/LU>
+
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -30,6 +33,76 @@ inline ElasticMaterial elastic(double young, double poisson, double density, Pla
   m.density = density;
   m.plane = plane;
   return m;
+}
+
+/// A constant traction (Pa) on named curve @p curve.
+inline CurveLoad traction_load(int curve, Point2 traction) {
+  CurveLoad load;
+  load.curve = curve;
+  load.traction = traction;
+  return load;
+}
+
+/// Integral over a convex polygon of f by a fan of triangles with the 7-point, degree-5 Gauss
+/// rule (independent of the simplex integration under test).
+template <class F> double integrate(const Polygon& polygon, F f) {
+  static const double w[7] = {0.225,
+                              0.132394152788506,
+                              0.132394152788506,
+                              0.132394152788506,
+                              0.125939180544827,
+                              0.125939180544827,
+                              0.125939180544827};
+  static const double l[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
+                                 {0.059715871789770, 0.470142064105115, 0.470142064105115},
+                                 {0.470142064105115, 0.059715871789770, 0.470142064105115},
+                                 {0.470142064105115, 0.470142064105115, 0.059715871789770},
+                                 {0.797426985353087, 0.101286507323456, 0.101286507323456},
+                                 {0.101286507323456, 0.797426985353087, 0.101286507323456},
+                                 {0.101286507323456, 0.101286507323456, 0.797426985353087}};
+  const Loop& loop = polygon.outer;
+  double total = 0.0;
+  for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
+    const Point2& a = loop[0];
+    const Point2& b = loop[i];
+    const Point2& c = loop[i + 1];
+    const double area = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
+    for (int g = 0; g < 7; ++g)
+      total += area * w[g] * f(Point2(l[g][0] * a + l[g][1] * b + l[g][2] * c));
+  }
+  return total;
+}
+
+/// Energy norm of the stress error, sqrt(∫ (s - s_h)^T D^-1 (s - s_h)), over every element
+/// of a model whose elements hold their stress (one static step from zero stress).
+template <class ExactStress> double stress_energy_error(const Model& model, ExactStress exact) {
+  double total = 0.0;
+  for (int e = 0; e < model.n_elements(); ++e) {
+    const ModelElement& element = model.elements[static_cast<std::size_t>(e)];
+    const Eigen::Matrix3d compliance = elasticity_matrix(model.material_of(e)).inverse();
+    for (const Polygon& p : element.polygons) {
+      total += integrate(p, [&](const Point2& x) {
+        const Eigen::Vector3d d = exact(x) - element.stress.at(x);
+        return d.dot(compliance * d);
+      });
+    }
+  }
+  return std::sqrt(total);
+}
+
+/// The same energy of the exact stress alone, for relative errors.
+template <class ExactStress> double stress_energy(const Model& model, ExactStress exact) {
+  double total = 0.0;
+  for (int e = 0; e < model.n_elements(); ++e) {
+    const Eigen::Matrix3d compliance = elasticity_matrix(model.material_of(e)).inverse();
+    for (const Polygon& p : model.elements[static_cast<std::size_t>(e)].polygons) {
+      total += integrate(p, [&](const Point2& x) {
+        const Eigen::Vector3d s = exact(x);
+        return s.dot(compliance * s);
+      });
+    }
+  }
+  return std::sqrt(total);
 }
 
 /// Physical mesh + math mesh + cover system + model, ready for a stepper.
