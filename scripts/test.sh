@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's test command (and all that .ci/run does): installs what is missing, checks
 # formatting, builds Release with warnings as errors and runs every test, then builds Debug
-# with AddressSanitizer + UndefinedBehaviorSanitizer and runs the unit and verification tests.
+# with AddressSanitizer + UndefinedBehaviorSanitizer and runs the unit and verification tests
+# (except those labelled slow: convergence sweeps that only make sense optimised).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
@@ -31,6 +32,6 @@ phase "sanitizer tests (unit, verification)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$root/tests/tools/lsan.supp:print_suppressions=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-ctest --test-dir build/asan --output-on-failure -j "$jobs" -L 'unit|verification' --timeout 900
+ctest --test-dir build/asan --output-on-failure -j "$jobs" -L 'unit|verification' -LE slow --timeout 900
 
 phase "done"

@@ -61,9 +61,12 @@ DofMap::DofMap(int n_raw, std::span<const LinearConstraint> constraints, double 
     if (reduced.empty()) {
       if (std::abs(rhs) > tolerance * std::max(std::abs(row.value), 1.0)) {
         std::ostringstream message;
-        message << "contradictory constraints: " << row.origin
-                << " cannot hold together with the constraints before it (residual " << rhs
-                << "); remove one of the supports";
+        message << "contradictory supports: " << row.origin
+                << " cannot be met together with the supports before it (they leave it " << rhs
+                << " off): either two supports impose different displacements on the same "
+                   "point, or imposed displacements vary faster than the cover functions "
+                   "near it can follow (e.g. on two edges meeting at a corner); remove one, "
+                   "or use method = \"penalty\" there";
         throw InputError(message.str());
       }
       ++stats_.redundant;

@@ -56,7 +56,7 @@ TEST(DofMap, RedundantConstraintsAreDroppedAndContradictionsReported) {
     const DofMap bad(3, rows);
     FAIL() << "contradiction not detected";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("fixed curve top"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("fixed curve top"), std::string::npos) << e.what();
   }
 }
 
