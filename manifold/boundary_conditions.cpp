@@ -12,9 +12,9 @@ namespace {
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-void add_local(const std::vector<int>& dofs, const Eigen::VectorXd& local, Eigen::VectorXd& f) {
-  for (std::size_t i = 0; i < dofs.size(); ++i)
-    f(dofs[i]) += local(static_cast<Eigen::Index>(i));
+void add_local(const ElementDofs& dofs, const ElementVector& local, Eigen::VectorXd& f) {
+  for (Eigen::Index i = 0; i < dofs.size(); ++i)
+    f(dofs(i)) += local(i);
 }
 
 std::string point_text(const Point2& p) {
@@ -62,8 +62,8 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
     if (s.method != SupportMethod::exact || s.point.element < 0)
       continue;
     const NmmShape shape = model.shape(s.point.element);
-    const Eigen::VectorXd phi = shape.values_at(s.point.position);
-    const std::vector<int> dofs = model.element_dofs(s.point.element);
+    const ShapeVector phi = shape.values_at(s.point.position);
+    const ElementDofs dofs = model.element_dofs(s.point.element);
     for (int component = 0; component < 2; ++component) {
       if ((component == 0 && !s.fix_x) || (component == 1 && !s.fix_y))
         continue;
@@ -73,7 +73,7 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
       row.value = component == 0 ? remaining.x() : remaining.y();
       for (int a = 0; a < shape.n_shapes(); ++a) {
         if (phi(a) != 0.0)
-          row.terms.emplace_back(dofs[at(2 * a + component)], phi(a));
+          row.terms.emplace_back(dofs(2 * a + component), phi(a));
       }
       rows.push_back(std::move(row));
     }
@@ -81,10 +81,10 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
   return rows;
 }
 
-Eigen::MatrixXd support_spring(const Model& model, const SupportPoint& support, double stiffness) {
-  const Eigen::MatrixXd t =
+ElementMatrix support_spring(const Model& model, const SupportPoint& support, double stiffness) {
+  const InterpolationMatrix t =
       model.shape(support.point.element).interpolation_at(support.point.position);
-  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(t.cols(), t.cols());
+  ElementMatrix k = ElementMatrix::Zero(t.cols(), t.cols());
   if (support.fix_x)
     k += stiffness * t.row(0).transpose() * t.row(0);
   if (support.fix_y)
@@ -92,16 +92,16 @@ Eigen::MatrixXd support_spring(const Model& model, const SupportPoint& support, 
   return k;
 }
 
-Eigen::VectorXd element_load(const Model& model,
-                             int element,
-                             const NmmElementIntegrals& integrals,
-                             std::span<const BodyLoad> body_loads,
-                             double time) {
+ElementVector element_load(const Model& model,
+                           int element,
+                           const NmmElementIntegrals& integrals,
+                           std::span<const BodyLoad> body_loads,
+                           double time) {
   const ElasticMaterial& material = model.material_of(element);
   Point2 force = Point2::Zero();
   for (const BodyLoad& load : body_loads)
     force += load.ramp.at(time) * material.density * load.acceleration;
-  Eigen::VectorXd f = integrals.body_force(force, material.thickness_factor());
+  ElementVector f = integrals.body_force(force, material.thickness_factor());
   const ModelElement& e = model.elements[at(element)];
   if (!e.stress.coefficients.isZero())
     f += integrals.initial_stress_load(e.stress, material.thickness_factor());
@@ -116,7 +116,7 @@ Eigen::VectorXd support_spring_load(const Model& model,
       model.shape(support.point.element).interpolation_at(support.point.position);
   const Point2 remaining =
       support.ramp.at(time) * support.displacement - (support.point.position - support.start);
-  Eigen::VectorXd f = Eigen::VectorXd::Zero(t.cols());
+  ElementVector f = ElementVector::Zero(t.cols());
   if (support.fix_x)
     f += stiffness * remaining.x() * t.row(0).transpose();
   if (support.fix_y)
@@ -128,7 +128,8 @@ void add_point_load(const Model& model, const PointLoad& load, double time, Eige
   const double factor = load.ramp.at(time);
   if (factor == 0.0 || load.point.element < 0)
     return;
-  const Eigen::MatrixXd t = model.shape(load.point.element).interpolation_at(load.point.position);
+  const InterpolationMatrix t =
+      model.shape(load.point.element).interpolation_at(load.point.position);
   add_local(model.element_dofs(load.point.element), t.transpose() * (factor * load.force), f);
 }
 
@@ -153,7 +154,7 @@ void add_curve_load(const Model& model, const CurveLoad& load, double time, Eige
     const Point2 outward = left ? right_normal : Point2(-right_normal);
     const double thickness = model.material_of(element).thickness_factor();
     const NmmShape shape = model.shape(element);
-    Eigen::VectorXd local = Eigen::VectorXd::Zero(shape.n_dofs());
+    ElementVector local = ElementVector::Zero(shape.n_dofs());
     // Constant loads: two Gauss points are exact. Loads given as fields of position: five
     // points per piece, exact to degree 9, so a smooth field is integrated to a tiny
     // fraction of the discretisation error.
@@ -174,7 +175,7 @@ void add_curve_load(const Model& model, const CurveLoad& load, double time, Eige
       Point2 traction = (load.is_pressure ? Point2::Zero() : load.traction) - pressure * outward;
       if (load.traction_at)
         traction += load.traction_at(x);
-      const Eigen::MatrixXd t = shape.interpolation_at(x);
+      const InterpolationMatrix t = shape.interpolation_at(x);
       local += w * length * thickness * factor * (t.transpose() * traction);
     }
     add_local(model.element_dofs(element), local, f);

@@ -98,7 +98,7 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
 
 /// The spring matrix of a penalty support point: stiffness (Tx^T Tx and/or Ty^T Ty) on
 /// the element's raw unknowns (Shi eq. 2.27).
-[[nodiscard]] Eigen::MatrixXd
+[[nodiscard]] ElementMatrix
 support_spring(const Model& model, const SupportPoint& support, double stiffness);
 
 /// The load of a penalty support pulling its point towards its imposed displacement at
@@ -109,11 +109,11 @@ support_spring_load(const Model& model, const SupportPoint& support, double stif
 /// The local load vector of element @p element at time @p time from its integrals: every
 /// body load (Shi eq. 2.14, density times acceleration) and its initial-stress load
 /// -∫ B^T sigma0 (eq. 2.10).
-[[nodiscard]] Eigen::VectorXd element_load(const Model& model,
-                                           int element,
-                                           const NmmElementIntegrals& integrals,
-                                           std::span<const BodyLoad> body_loads,
-                                           double time);
+[[nodiscard]] ElementVector element_load(const Model& model,
+                                         int element,
+                                         const NmmElementIntegrals& integrals,
+                                         std::span<const BodyLoad> body_loads,
+                                         double time);
 
 /// Adds a point or curve load at time @p time to the raw load vector @p f.
 void add_point_load(const Model& model, const PointLoad& load, double time, Eigen::VectorXd& f);

@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <span>
 
 namespace nmm {
 
@@ -97,26 +98,29 @@ std::array<Point2, 3> Model::triangle(int element) const {
 
 NmmShape Model::shape(int element) const { return NmmShape(triangle(element), order, scale); }
 
-std::vector<int> Model::element_dofs(int element) const {
+ElementDofs Model::element_dofs(int element) const {
   const int per_cover = dofs_per_cover();
-  std::vector<int> dofs;
-  dofs.reserve(at(3 * per_cover));
+  ElementDofs dofs(3 * per_cover);
+  int k = 0;
   for (const int c : elements[at(element)].covers) {
     for (int j = 0; j < per_cover; ++j)
-      dofs.push_back(dof(c, j));
+      dofs(k++) = dof(c, j);
   }
   return dofs;
 }
 
-std::vector<double> Model::element_values(int element, const Eigen::VectorXd& raw) const {
-  std::vector<double> values;
-  for (const int d : element_dofs(element))
-    values.push_back(raw(d));
+ElementVector Model::element_values(int element, const Eigen::VectorXd& raw) const {
+  const ElementDofs dofs = element_dofs(element);
+  ElementVector values(dofs.size());
+  for (Eigen::Index i = 0; i < dofs.size(); ++i)
+    values(i) = raw(dofs(i));
   return values;
 }
 
 Point2 Model::displacement(int element, const Point2& x, const Eigen::VectorXd& raw) const {
-  return shape(element).displacement_at(x, element_values(element, raw));
+  const ElementVector values = element_values(element, raw);
+  return shape(element).displacement_at(x,
+                                        {values.data(), static_cast<std::size_t>(values.size())});
 }
 
 int Model::find_element(const Point2& x, double tolerance) const {
@@ -150,8 +154,8 @@ std::vector<LinearConstraint> Model::extension_relations() const {
       continue;
     const int root = cover.extension_element;
     const NmmShape root_shape = shape(root);
-    const std::vector<int> root_dofs = element_dofs(root);
-    const Eigen::VectorXd phi = root_shape.values_at(cover.position);
+    const ElementDofs root_dofs = element_dofs(root);
+    const ShapeVector phi = root_shape.values_at(cover.position);
     const std::string origin = "tiny cover of math node " + std::to_string(cover.node);
     for (int component = 0; component < 2; ++component) {
       LinearConstraint value;
@@ -159,7 +163,7 @@ std::vector<LinearConstraint> Model::extension_relations() const {
       value.preferred_slave = dof(c, component);
       value.terms.emplace_back(dof(c, component), 1.0);
       for (int a = 0; a < root_shape.n_shapes(); ++a)
-        value.terms.emplace_back(root_dofs[at(2 * a + component)], -phi(a));
+        value.terms.emplace_back(root_dofs(2 * a + component), -phi(a));
       relations.push_back(std::move(value));
     }
     if (order == 0)
@@ -181,7 +185,7 @@ std::vector<LinearConstraint> Model::extension_relations() const {
         gradient.terms.emplace_back(slave, 1.0);
         for (int a = 0; a < root_shape.n_shapes(); ++a) {
           const double g = 0.5 * scale * derivative.col(a).dot(at_node + at_reference);
-          gradient.terms.emplace_back(root_dofs[at(2 * a + component)], -g);
+          gradient.terms.emplace_back(root_dofs(2 * a + component), -g);
         }
         relations.push_back(std::move(gradient));
       }
@@ -327,7 +331,8 @@ void Model::accumulate_stress(const Eigen::VectorXd& raw) {
   for (int e = 0; e < n_elements(); ++e) {
     ModelElement& element = elements[at(e)];
     const NmmShape s = shape(e);
-    const std::vector<double> d = element_values(e, raw);
+    const ElementVector values = element_values(e, raw);
+    const std::span<const double> d(values.data(), static_cast<std::size_t>(values.size()));
     const LinearField3 strain = s.strain(d);
     // Rigid rotation of the step at the element's centre: (dv/dx - du/dy) / 2.
     double du_dy = 0.0;
@@ -344,25 +349,20 @@ void Model::accumulate_stress(const Eigen::VectorXd& raw) {
 
 void Model::move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points) {
   NMM_ASSERT(raw.size() == n_dofs(), "wrong size of the displacement vector");
-  std::vector<NmmShape> shapes;
-  shapes.reserve(elements.size());
-  std::vector<std::vector<double>> values(elements.size());
-  for (int e = 0; e < n_elements(); ++e) {
-    shapes.push_back(shape(e));
-    values[at(e)] = element_values(e, raw);
-  }
-  auto moved = [&](int e, const Point2& x) {
-    return Point2(x + shapes[at(e)].displacement_at(x, values[at(e)]));
-  };
+  // Everything is evaluated with the shapes of the start of the step, so covers move last.
+  auto moved = [&](int e, const Point2& x) { return Point2(x + displacement(e, x, raw)); };
   for (int e = 0; e < n_elements(); ++e) {
     ModelElement& element = elements[at(e)];
+    const NmmShape s = shape(e);
+    const ElementVector values = element_values(e, raw);
+    const std::span<const double> d(values.data(), static_cast<std::size_t>(values.size()));
     CompensatedSum area_sum;
     for (Polygon& polygon : element.polygons) {
       for (Point2& p : polygon.outer)
-        p = moved(e, p);
+        p += s.displacement_at(p, d);
       for (Loop& hole : polygon.holes) {
         for (Point2& p : hole)
-          p = moved(e, p);
+          p += s.displacement_at(p, d);
       }
       area_sum += area(polygon);
     }

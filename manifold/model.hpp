@@ -80,9 +80,9 @@ public:
   [[nodiscard]] std::array<Point2, 3> triangle(int element) const;
   [[nodiscard]] NmmShape shape(int element) const;
   /// Raw unknowns of the element, in the local order of its shape.
-  [[nodiscard]] std::vector<int> element_dofs(int element) const;
+  [[nodiscard]] ElementDofs element_dofs(int element) const;
   /// The element's local unknowns taken from a raw vector.
-  [[nodiscard]] std::vector<double> element_values(int element, const Eigen::VectorXd& raw) const;
+  [[nodiscard]] ElementVector element_values(int element, const Eigen::VectorXd& raw) const;
   /// Displacement at @p x of the element's field for the raw unknowns @p raw.
   [[nodiscard]] Point2 displacement(int element, const Point2& x, const Eigen::VectorXd& raw) const;
   /// Material of an element.

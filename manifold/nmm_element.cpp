@@ -73,13 +73,13 @@ NmmShape::NmmShape(const std::array<Point2, 3>& vertices, int order, double scal
   }
 }
 
-Eigen::VectorXd NmmShape::values_at(const Point2& x) const {
+ShapeVector NmmShape::values_at(const Point2& x) const {
   return values_.transpose() * monomials(x - origin_);
 }
 
-Eigen::MatrixXd NmmShape::interpolation_at(const Point2& x) const {
-  const Eigen::VectorXd phi = values_at(x);
-  Eigen::MatrixXd t = Eigen::MatrixXd::Zero(2, n_dofs());
+InterpolationMatrix NmmShape::interpolation_at(const Point2& x) const {
+  const ShapeVector phi = values_at(x);
+  InterpolationMatrix t = InterpolationMatrix::Zero(2, n_dofs());
   for (int a = 0; a < n_shapes(); ++a) {
     t(0, 2 * a) = phi(a);
     t(1, 2 * a + 1) = phi(a);
@@ -89,7 +89,7 @@ Eigen::MatrixXd NmmShape::interpolation_at(const Point2& x) const {
 
 Point2 NmmShape::displacement_at(const Point2& x, std::span<const double> dofs) const {
   NMM_ASSERT(static_cast<int>(dofs.size()) == n_dofs(), "wrong number of element unknowns");
-  const Eigen::VectorXd phi = values_at(x);
+  const ShapeVector phi = values_at(x);
   Point2 u = Point2::Zero();
   for (int a = 0; a < n_shapes(); ++a) {
     u.x() += phi(a) * dofs[static_cast<std::size_t>(2 * a)];
@@ -135,15 +135,15 @@ NmmElementIntegrals::NmmElementIntegrals(const NmmShape& shape, std::span<const 
   linear_ = second_.topLeftCorner<3, 3>();
 }
 
-Eigen::MatrixXd NmmElementIntegrals::stiffness(const Eigen::Matrix3d& d, double thickness) const {
+ElementMatrix NmmElementIntegrals::stiffness(const Eigen::Matrix3d& d, double thickness) const {
   const auto& dx = shape_.dx();
   const auto& dy = shape_.dy();
-  const Eigen::MatrixXd gxx = dx.transpose() * linear_ * dx;
-  const Eigen::MatrixXd gxy = dx.transpose() * linear_ * dy; // ∫ phi_a,x phi_b,y
-  const Eigen::MatrixXd gyy = dy.transpose() * linear_ * dy;
-  const Eigen::MatrixXd gyx = gxy.transpose();
+  const ShapeMatrix gxx = dx.transpose() * linear_ * dx;
+  const ShapeMatrix gxy = dx.transpose() * linear_ * dy; // ∫ phi_a,x phi_b,y
+  const ShapeMatrix gyy = dy.transpose() * linear_ * dy;
+  const ShapeMatrix gyx = gxy.transpose();
   const int n = shape_.n_shapes();
-  Eigen::MatrixXd k(2 * n, 2 * n);
+  ElementMatrix k(2 * n, 2 * n);
   // B_a^u = (phi_a,x, 0, phi_a,y), B_a^v = (0, phi_a,y, phi_a,x): the 2x2 blocks of B^T D B.
   for (int a = 0; a < n; ++a) {
     for (int b = 0; b < n; ++b) {
@@ -160,11 +160,15 @@ Eigen::MatrixXd NmmElementIntegrals::stiffness(const Eigen::Matrix3d& d, double 
   return thickness * k;
 }
 
-Eigen::MatrixXd NmmElementIntegrals::mass(double density_thickness) const {
+ShapeMatrix NmmElementIntegrals::scalar_mass(double density_thickness) const {
   const auto& c = shape_.values();
-  const Eigen::MatrixXd scalar = c.transpose() * second_ * c;
+  return density_thickness * (c.transpose() * second_ * c);
+}
+
+ElementMatrix NmmElementIntegrals::mass(double density_thickness) const {
+  const ShapeMatrix scalar = scalar_mass(1.0);
   const int n = shape_.n_shapes();
-  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  ElementMatrix m = ElementMatrix::Zero(2 * n, 2 * n);
   for (int a = 0; a < n; ++a) {
     for (int b = 0; b < n; ++b) {
       m(2 * a, 2 * b) = scalar(a, b);
@@ -174,10 +178,10 @@ Eigen::MatrixXd NmmElementIntegrals::mass(double density_thickness) const {
   return density_thickness * m;
 }
 
-Eigen::VectorXd NmmElementIntegrals::body_force(const Point2& force, double thickness) const {
-  const Eigen::VectorXd integrals = shape_.values().transpose() * first_;
+ElementVector NmmElementIntegrals::body_force(const Point2& force, double thickness) const {
+  const ShapeVector integrals = shape_.values().transpose() * first_;
   const int n = shape_.n_shapes();
-  Eigen::VectorXd f(2 * n);
+  ElementVector f(2 * n);
   for (int a = 0; a < n; ++a) {
     f(2 * a) = thickness * force.x() * integrals(a);
     f(2 * a + 1) = thickness * force.y() * integrals(a);
@@ -185,8 +189,8 @@ Eigen::VectorXd NmmElementIntegrals::body_force(const Point2& force, double thic
   return f;
 }
 
-Eigen::VectorXd NmmElementIntegrals::initial_stress_load(const LinearField3& stress,
-                                                         double thickness) const {
+ElementVector NmmElementIntegrals::initial_stress_load(const LinearField3& stress,
+                                                       double thickness) const {
   const LinearField3 local = stress.about(shape_.origin());
   const Eigen::Vector3d sxx = linear_ * local.coefficients.row(0).transpose();
   const Eigen::Vector3d syy = linear_ * local.coefficients.row(1).transpose();
@@ -194,7 +198,7 @@ Eigen::VectorXd NmmElementIntegrals::initial_stress_load(const LinearField3& str
   const auto& dx = shape_.dx();
   const auto& dy = shape_.dy();
   const int n = shape_.n_shapes();
-  Eigen::VectorXd f(2 * n);
+  ElementVector f(2 * n);
   for (int a = 0; a < n; ++a) {
     f(2 * a) = -thickness * (dx.col(a).dot(sxx) + dy.col(a).dot(sxy));
     f(2 * a + 1) = -thickness * (dy.col(a).dot(syy) + dx.col(a).dot(sxy));

@@ -23,6 +23,36 @@ inline constexpr int max_cover_order = 1;
 /// Unknowns per cover, 2 m, in Shi's order d1..d2m: (u, v) of each basis function in turn.
 [[nodiscard]] constexpr int cover_dofs(int order) noexcept { return 2 * cover_basis_size(order); }
 
+/// Most scalar shape functions and unknowns of an element (order 1: 3 covers x 3 functions).
+inline constexpr int max_element_shapes = 9;
+inline constexpr int max_element_dofs = 2 * max_element_shapes;
+
+/// Element-sized matrices and vectors, sized at run time up to the maximum, never on the
+/// heap: element work runs for every element every step (bench/step_bench.cpp).
+using ElementMatrix = Eigen::Matrix<double,
+                                    Eigen::Dynamic,
+                                    Eigen::Dynamic,
+                                    Eigen::ColMajor,
+                                    max_element_dofs,
+                                    max_element_dofs>;
+using ElementVector =
+    Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, max_element_dofs, 1>;
+using ElementDofs = Eigen::Matrix<int, Eigen::Dynamic, 1, Eigen::ColMajor, max_element_dofs, 1>;
+using ShapeVector =
+    Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, max_element_shapes, 1>;
+using ShapeMatrix = Eigen::Matrix<double,
+                                  Eigen::Dynamic,
+                                  Eigen::Dynamic,
+                                  Eigen::ColMajor,
+                                  max_element_shapes,
+                                  max_element_shapes>;
+using InterpolationMatrix =
+    Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::ColMajor, 2, max_element_dofs>;
+using ShapeCoefficients =
+    Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::ColMajor, 6, max_element_shapes>;
+using GradientCoefficients =
+    Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, max_element_shapes>;
+
 /// A linear field of three components (a stress or a strain) over an element:
 /// component i = c(i,0) + c(i,1) (x - origin.x) + c(i,2) (y - origin.y), i = xx, yy, xy.
 struct LinearField3 {
@@ -62,9 +92,9 @@ public:
   [[nodiscard]] const Point2& origin() const noexcept { return origin_; }
 
   /// Shape function values at @p x (length n_shapes()).
-  [[nodiscard]] Eigen::VectorXd values_at(const Point2& x) const;
+  [[nodiscard]] ShapeVector values_at(const Point2& x) const;
   /// The 2 x n_dofs() interpolation matrix T(x) of Shi eq. 2.2: (u, v) = T(x) d.
-  [[nodiscard]] Eigen::MatrixXd interpolation_at(const Point2& x) const;
+  [[nodiscard]] InterpolationMatrix interpolation_at(const Point2& x) const;
   /// The strain field exx, eyy, gxy of the local unknowns @p dofs (Shi eq. 2.3-2.5); linear
   /// for order 1, constant for order 0.
   [[nodiscard]] LinearField3 strain(std::span<const double> dofs) const;
@@ -73,17 +103,17 @@ public:
 
   /// Coefficients (monomials 1, X, Y, X², XY, Y² in local coordinates) of every shape
   /// function, one column each.
-  [[nodiscard]] const Eigen::Matrix<double, 6, Eigen::Dynamic>& values() const { return values_; }
+  [[nodiscard]] const ShapeCoefficients& values() const { return values_; }
   /// Coefficients (1, X, Y) of the x and y derivatives.
-  [[nodiscard]] const Eigen::Matrix<double, 3, Eigen::Dynamic>& dx() const { return dx_; }
-  [[nodiscard]] const Eigen::Matrix<double, 3, Eigen::Dynamic>& dy() const { return dy_; }
+  [[nodiscard]] const GradientCoefficients& dx() const { return dx_; }
+  [[nodiscard]] const GradientCoefficients& dy() const { return dy_; }
 
 private:
   int order_ = 0;
   Point2 origin_ = Point2::Zero();
-  Eigen::Matrix<double, 6, Eigen::Dynamic> values_;
-  Eigen::Matrix<double, 3, Eigen::Dynamic> dx_;
-  Eigen::Matrix<double, 3, Eigen::Dynamic> dy_;
+  ShapeCoefficients values_;
+  GradientCoefficients dx_;
+  GradientCoefficients dy_;
 };
 
 /// Area integrals of one element: stiffness, mass, body force and initial-stress load, from
@@ -98,16 +128,19 @@ public:
   [[nodiscard]] double area() const noexcept { return area_; }
 
   /// Stiffness ∫ B^T D B (Shi eq. 2.8), times @p thickness.
-  [[nodiscard]] Eigen::MatrixXd stiffness(const Eigen::Matrix3d& d, double thickness) const;
+  [[nodiscard]] ElementMatrix stiffness(const Eigen::Matrix3d& d, double thickness) const;
   /// Consistent mass ∫ T^T T (Shi eq. 2.22 without 2M/Δ²), times @p density_thickness.
-  [[nodiscard]] Eigen::MatrixXd mass(double density_thickness) const;
+  [[nodiscard]] ElementMatrix mass(double density_thickness) const;
+  /// The scalar part of the mass (one displacement component), n_shapes() square: the
+  /// mass is this matrix on u and the same on v.
+  [[nodiscard]] ShapeMatrix scalar_mass(double density_thickness) const;
   /// Body-force load ∫ T^T f (Shi eq. 2.14) for a constant force per volume @p force (N/m³)
   /// times @p thickness.
-  [[nodiscard]] Eigen::VectorXd body_force(const Point2& force, double thickness) const;
+  [[nodiscard]] ElementVector body_force(const Point2& force, double thickness) const;
   /// Initial-stress load -∫ B^T sigma0 (Shi eq. 2.10) for a linear stress field, times
   /// @p thickness.
-  [[nodiscard]] Eigen::VectorXd initial_stress_load(const LinearField3& stress,
-                                                    double thickness) const;
+  [[nodiscard]] ElementVector initial_stress_load(const LinearField3& stress,
+                                                  double thickness) const;
   /// ∫ sigma over the element, for averages (a vector of the three integrals).
   [[nodiscard]] Eigen::Vector3d integral(const LinearField3& field) const;
 

@@ -126,7 +126,7 @@ void apply_coefficients2(int degree, double* values) {
 // ---------------------------------------------------------------------------- Moments2
 
 Moments2::Moments2(int degree, const Point2& origin)
-    : degree_(degree), origin_(origin), values_(static_cast<std::size_t>(size_for(degree)), 0.0) {
+    : degree_(degree), origin_(origin), values_(static_cast<std::size_t>(size_for(degree))) {
   check_degree(degree);
 }
 
@@ -280,7 +280,7 @@ void add_tetrahedron_terms(const Point3& pa,
 } // namespace
 
 Moments3::Moments3(int degree, const Point3& origin)
-    : degree_(degree), origin_(origin), values_(static_cast<std::size_t>(size_for(degree)), 0.0) {
+    : degree_(degree), origin_(origin), values_(static_cast<std::size_t>(size_for(degree))) {
   check_degree(degree);
 }
 

@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <array>
 #include <span>
 #include <vector>
 
@@ -17,6 +19,39 @@ namespace nmm {
 /// Highest total degree the integrators accept. The coefficients a! b! / (a+b+2)! stay far
 /// from under/overflow well beyond this; the cap only guards against a runaway argument.
 inline constexpr int max_integration_degree = 24;
+
+namespace detail {
+/// Storage of a set of moments: inline up to degree 8 in 2D (45 values), on the heap beyond.
+/// Why: element matrices need degree <= 4 and are rebuilt for every element every step; a
+/// heap allocation per moment set was a measurable part of a step (bench/step_bench.cpp).
+class MomentValues {
+public:
+  MomentValues() = default;
+  explicit MomentValues(std::size_t n) : size_(n) {
+    if (n > inline_capacity)
+      heap_.assign(n, 0.0);
+    else
+      std::fill_n(inline_.begin(), n, 0.0);
+  }
+  [[nodiscard]] std::size_t size() const noexcept { return size_; }
+  [[nodiscard]] double* data() noexcept {
+    return size_ > inline_capacity ? heap_.data() : inline_.data();
+  }
+  [[nodiscard]] const double* data() const noexcept {
+    return size_ > inline_capacity ? heap_.data() : inline_.data();
+  }
+  double& operator[](std::size_t k) noexcept { return data()[k]; }
+  double operator[](std::size_t k) const noexcept { return data()[k]; }
+  double* begin() noexcept { return data(); }
+  double* end() noexcept { return data() + size_; }
+
+private:
+  static constexpr std::size_t inline_capacity = 45;
+  std::size_t size_ = 0;
+  std::array<double, inline_capacity> inline_{};
+  std::vector<double> heap_;
+};
+} // namespace detail
 
 /// The moments M(a, b) = ∫∫ (x - x0)^a (y - y0)^b dx dy of a plane region for all
 /// a + b <= degree, about the origin (x0, y0).
@@ -57,7 +92,7 @@ public:
 private:
   int degree_ = -1;
   Point2 origin_ = Point2::Zero();
-  std::vector<double> values_;
+  detail::MomentValues values_;
 };
 
 /// Oriented integrals over one closed loop (Shi's simplex sum, eq. 25-28 generalised to any
@@ -109,7 +144,7 @@ public:
 private:
   int degree_ = -1;
   Point3 origin_ = Point3::Zero();
-  std::vector<double> values_;
+  detail::MomentValues values_;
 };
 
 /// A closed polyhedron: planar polygonal faces given as vertex index loops, each turning

@@ -7,10 +7,12 @@
 #include "solver/sparsity.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <set>
+#include <span>
 #include <sstream>
 
 namespace nmm {
@@ -19,6 +21,15 @@ namespace {
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
+using Clock = std::chrono::steady_clock;
+
+/// Adds the time since @p start to @p total and restarts @p start.
+void lap(Clock::time_point& start, double& total) {
+  const Clock::time_point now = Clock::now();
+  total += std::chrono::duration<double>(now - start).count();
+  start = now;
+}
+
 std::string point_text(const Point2& p) {
   std::ostringstream out;
   out.precision(6);
@@ -26,46 +37,48 @@ std::string point_text(const Point2& p) {
   return out.str();
 }
 
-/// One element's (or spring's) unknowns in the reduced system: d_local = T z + t0.
+/// The reduction of a coupling whose unknowns are not all free: d_local = T z + t0.
 struct Reduction {
   std::vector<int> reduced;  ///< reduced unknowns z, sorted
-  Eigen::MatrixXd transform; ///< local x reduced.size(); empty when the identity
-  Eigen::VectorXd constant;  ///< t0, empty when zero
+  Eigen::MatrixXd transform; ///< local x reduced.size()
+  Eigen::VectorXd constant;  ///< t0
 };
 
-Reduction reduce(const DofMap& map, const std::vector<int>& raw) {
-  Reduction r;
+/// Appends the reduced unknowns of the raw unknowns @p raw to @p flat. Returns true when
+/// every one is free (the common case: then they are appended in local order and the local
+/// matrix scatters as it is); otherwise fills @p r and appends its sorted unknowns.
+bool reduce(const DofMap& map, const ElementDofs& raw, std::vector<int>& flat, Reduction& r) {
   bool identity = true;
+  for (Eigen::Index i = 0; i < raw.size() && identity; ++i)
+    identity = !map.is_slave(raw(i));
+  if (identity) {
+    for (Eigen::Index i = 0; i < raw.size(); ++i)
+      flat.push_back(map.reduced(raw(i)));
+    return true;
+  }
   std::vector<DofExpansion> expansions;
-  expansions.reserve(raw.size());
-  for (const int d : raw) {
-    expansions.push_back(map.expansion(d));
-    const DofExpansion& e = expansions.back();
-    identity = identity && !map.is_slave(d);
-    for (const auto& [j, c] : e.terms)
+  expansions.reserve(static_cast<std::size_t>(raw.size()));
+  r.reduced.clear();
+  for (Eigen::Index i = 0; i < raw.size(); ++i) {
+    expansions.push_back(map.expansion(raw(i)));
+    for (const auto& [j, c] : expansions.back().terms)
       r.reduced.push_back(j);
   }
   std::sort(r.reduced.begin(), r.reduced.end());
   r.reduced.erase(std::unique(r.reduced.begin(), r.reduced.end()), r.reduced.end());
-  if (identity) {
-    // Keep the local order: the reduced index of each local unknown, unsorted.
-    r.reduced.clear();
-    for (const int d : raw)
-      r.reduced.push_back(map.reduced(d));
-    return r;
-  }
-  r.transform = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(raw.size()),
-                                      static_cast<Eigen::Index>(r.reduced.size()));
-  r.constant = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(raw.size()));
-  for (std::size_t i = 0; i < raw.size(); ++i) {
-    r.constant(static_cast<Eigen::Index>(i)) = expansions[i].constant;
-    for (const auto& [j, c] : expansions[i].terms) {
+  r.transform = Eigen::MatrixXd::Zero(raw.size(), static_cast<Eigen::Index>(r.reduced.size()));
+  r.constant = Eigen::VectorXd::Zero(raw.size());
+  for (Eigen::Index i = 0; i < raw.size(); ++i) {
+    const DofExpansion& e = expansions[static_cast<std::size_t>(i)];
+    r.constant(i) = e.constant;
+    for (const auto& [j, c] : e.terms) {
       const auto column =
           std::lower_bound(r.reduced.begin(), r.reduced.end(), j) - r.reduced.begin();
-      r.transform(static_cast<Eigen::Index>(i), column) += c;
+      r.transform(i, column) += c;
     }
   }
-  return r;
+  flat.insert(flat.end(), r.reduced.begin(), r.reduced.end());
+  return false;
 }
 
 } // namespace
@@ -75,10 +88,13 @@ struct TimeStepper::Impl {
   CholmodSolver solver;
   SparsityPattern pattern;
   std::unique_ptr<Assembler> stiffness;
-  /// Scalar consistent mass of every element (n x n, times density and thickness), kept
-  /// from the assembly for the kinetic energy of the new velocities.
-  std::vector<Eigen::MatrixXd> element_mass;
-  std::vector<std::vector<int>> couplings; // reduced unknowns of each coupling, last pattern
+  /// Scalar consistent mass of every element (n x n each, times density and thickness, one
+  /// after the other), kept from the assembly for the kinetic energy of the new velocities.
+  std::vector<double> element_mass;
+  /// Reduced unknowns of every coupling (elements, then penalty springs), flat, with their
+  /// starts: the pattern of the last build, compared to the next step's.
+  std::vector<int> coupling_start;
+  std::vector<int> coupling_dofs;
   bool analysed = false;
 };
 
@@ -131,6 +147,8 @@ TimeStepper::~TimeStepper() = default;
 const SolverCounters& TimeStepper::solver_counters() const { return impl_->solver.counters(); }
 
 int TimeStepper::n_unknowns() const { return impl_->pattern.n_dofs(); }
+
+const SparseMatrix& TimeStepper::last_matrix() const { return impl_->stiffness->matrix(); }
 
 void TimeStepper::set_rigid_velocities(const std::vector<Point2>& block_velocity,
                                        const std::vector<double>& block_angular_velocity) {
@@ -209,6 +227,7 @@ StepReport TimeStepper::step(double until) {
   Eigen::VectorXd raw;
   for (int cut = 0;; ++cut) {
     const double t1 = time_ + dt;
+    Clock::time_point clock = Clock::now();
     // Constraints and the reduction of every element.
     std::vector<LinearConstraint> constraints = model_.extension_relations();
     constraints.insert(constraints.end(), impl_->dependencies.begin(), impl_->dependencies.end());
@@ -216,41 +235,54 @@ StepReport TimeStepper::step(double until) {
     constraints.insert(constraints.end(), supports.begin(), supports.end());
     const DofMap map(model_.n_dofs(), constraints);
 
-    std::vector<std::vector<int>> element_raw(model_.elements.size());
-    std::vector<Reduction> reductions;
-    reductions.reserve(model_.elements.size() + scene_.supports.size());
+    // Reduced unknowns of every coupling: elements, then penalty supports (same unknowns as
+    // their element). Only couplings with slaves get a transform.
+    std::vector<int> starts{0};
+    std::vector<int> flat;
+    starts.reserve(model_.elements.size() + scene_.supports.size() + 1);
+    flat.reserve(impl_->coupling_dofs.size());
+    std::vector<int> transform_of(model_.elements.size(), -1);
+    std::vector<Reduction> transforms;
     for (int e = 0; e < model_.n_elements(); ++e) {
-      element_raw[at(e)] = model_.element_dofs(e);
-      reductions.push_back(reduce(map, element_raw[at(e)]));
+      Reduction r;
+      if (!reduce(map, model_.element_dofs(e), flat, r)) {
+        transform_of[at(e)] = static_cast<int>(transforms.size());
+        transforms.push_back(std::move(r));
+      }
+      starts.push_back(static_cast<int>(flat.size()));
     }
     std::vector<int> spring_of; // support index of each extra coupling
     for (std::size_t s = 0; s < scene_.supports.size(); ++s) {
       const SupportPoint& support = scene_.supports[s];
       if (support.method == SupportMethod::penalty && support.point.element >= 0) {
-        reductions.push_back(reductions[at(support.point.element)]);
+        const int e = support.point.element;
+        flat.insert(flat.end(), flat.begin() + starts[at(e)], flat.begin() + starts[at(e + 1)]);
+        starts.push_back(static_cast<int>(flat.size()));
         spring_of.push_back(static_cast<int>(s));
       }
     }
-
+    auto coupling = [&](std::size_t k) {
+      return std::span<const int>(flat.data() + starts[k], at(starts[k + 1] - starts[k]));
+    };
+    lap(clock, counters_.seconds_constraints);
     // The sparsity pattern: rebuilt only when the couplings changed.
     bool rebuilt = false;
     if (!impl_->stiffness || impl_->pattern.n_dofs() != map.n_reduced() ||
-        impl_->couplings.size() != reductions.size() ||
-        !std::equal(reductions.begin(), reductions.end(), impl_->couplings.begin(),
-                    [](const Reduction& r, const std::vector<int>& c) { return r.reduced == c; })) {
+        impl_->coupling_start != starts || impl_->coupling_dofs != flat) {
       SparsityBuilder builder(map.n_reduced());
-      impl_->couplings.clear();
-      for (const Reduction& r : reductions) {
-        builder.add(r.reduced);
-        impl_->couplings.push_back(r.reduced);
-      }
+      builder.reserve(starts.size() - 1, flat.size());
+      for (std::size_t k = 0; k + 1 < starts.size(); ++k)
+        builder.add(coupling(k));
       impl_->pattern = builder.build();
       impl_->stiffness = std::make_unique<Assembler>(impl_->pattern);
-      for (const auto& c : impl_->couplings)
-        (void)impl_->stiffness->plan(c);
+      for (std::size_t k = 0; k + 1 < starts.size(); ++k)
+        (void)impl_->stiffness->plan(coupling(k));
+      impl_->coupling_start = starts;
+      impl_->coupling_dofs = flat;
       ++counters_.pattern_builds;
       rebuilt = true;
     }
+    lap(clock, counters_.seconds_pattern);
     Assembler& a = *impl_->stiffness;
     a.zero();
 
@@ -266,63 +298,68 @@ StepReport TimeStepper::step(double until) {
     // body forces and the initial-stress load.
     Eigen::VectorXd rhs_correction = Eigen::VectorXd::Zero(map.n_reduced());
     const double inertia = with_mass ? 2.0 / (dt * dt) : 0.0;
-    impl_->element_mass.resize(model_.elements.size());
+    const int n_shapes = 3 * cover_basis_size(model_.order);
+    if (with_mass)
+      impl_->element_mass.resize(model_.elements.size() * at(n_shapes * n_shapes));
+    auto scatter = [&](int plan, const ElementMatrix& local, int transform) {
+      if (transform < 0) {
+        a.add(plan, local);
+        return;
+      }
+      const Reduction& r = transforms[at(transform)];
+      a.add(plan, r.transform.transpose() * local * r.transform);
+      if (!r.constant.isZero()) {
+        const Eigen::VectorXd correction = r.transform.transpose() * (local * r.constant);
+        for (std::size_t j = 0; j < r.reduced.size(); ++j)
+          rhs_correction(r.reduced[j]) -= correction(static_cast<Eigen::Index>(j));
+      }
+    };
     for (int e = 0; e < model_.n_elements(); ++e) {
       const ModelElement& element = model_.elements[at(e)];
       const ElasticMaterial& material = model_.material_of(e);
       const NmmShape shape = model_.shape(e);
       const NmmElementIntegrals integrals(shape, element.polygons);
-      const std::vector<int>& dofs = element_raw[at(e)];
-      Eigen::MatrixXd local =
+      const ElementDofs dofs = model_.element_dofs(e);
+      ElementMatrix local =
           integrals.stiffness(elasticity_matrix(material), material.thickness_factor());
-      const Eigen::VectorXd load = element_load(model_, e, integrals, scene_.body_loads, t1);
-      for (std::size_t i = 0; i < dofs.size(); ++i)
-        f(dofs[i]) += load(static_cast<Eigen::Index>(i));
+      const ElementVector load = element_load(model_, e, integrals, scene_.body_loads, t1);
+      for (Eigen::Index i = 0; i < dofs.size(); ++i)
+        f(dofs(i)) += load(i);
       if (with_mass) {
-        const Eigen::MatrixXd mass = integrals.mass(material.density * material.thickness_factor());
-        local += inertia * mass;
-        // Inertia load 2 M v0 / dt (Shi eq. 2.23); velocities are zero in static steps.
-        Eigen::VectorXd v(shape.n_dofs());
-        for (int i = 0; i < shape.n_dofs(); ++i)
-          v(i) = velocity_(dofs[at(i)]);
-        const Eigen::VectorXd inertia_load = (2.0 / dt) * (mass * v);
-        for (int i = 0; i < shape.n_dofs(); ++i)
-          f(dofs[at(i)]) += inertia_load(i);
-        // The scalar part (u-u block) is all the kinetic energy needs.
-        Eigen::MatrixXd scalar(shape.n_shapes(), shape.n_shapes());
-        for (int i = 0; i < shape.n_shapes(); ++i)
-          for (int j = 0; j < shape.n_shapes(); ++j)
-            scalar(i, j) = mass(2 * i, 2 * j);
-        impl_->element_mass[at(e)] = std::move(scalar);
-      }
-      const Reduction& r = reductions[at(e)];
-      if (r.transform.size() == 0) {
-        a.add(e, local);
-      } else {
-        a.add(e, r.transform.transpose() * local * r.transform);
-        if (r.constant.size() > 0 && !r.constant.isZero()) {
-          const Eigen::VectorXd correction = r.transform.transpose() * (local * r.constant);
-          for (std::size_t j = 0; j < r.reduced.size(); ++j)
-            rhs_correction(r.reduced[j]) -= correction(static_cast<Eigen::Index>(j));
+        // Mass on u and v alike; inertia load 2 M v0 / dt (Shi eq. 2.22-2.23).
+        const ShapeMatrix mass =
+            integrals.scalar_mass(material.density * material.thickness_factor());
+        for (int i = 0; i < n_shapes; ++i) {
+          double fu = 0.0;
+          double fv = 0.0;
+          for (int j = 0; j < n_shapes; ++j) {
+            local(2 * i, 2 * j) += inertia * mass(i, j);
+            local(2 * i + 1, 2 * j + 1) += inertia * mass(i, j);
+            fu += mass(i, j) * velocity_(dofs(2 * j));
+            fv += mass(i, j) * velocity_(dofs(2 * j + 1));
+          }
+          f(dofs(2 * i)) += (2.0 / dt) * fu;
+          f(dofs(2 * i + 1)) += (2.0 / dt) * fv;
         }
+        std::copy_n(mass.data(), n_shapes * n_shapes,
+                    impl_->element_mass.begin() +
+                        static_cast<std::ptrdiff_t>(e) * n_shapes * n_shapes);
       }
+      scatter(e, local, transform_of[at(e)]);
     }
     for (std::size_t s = 0; s < spring_of.size(); ++s) {
       const SupportPoint& support = scene_.supports[at(spring_of[s])];
-      const Eigen::MatrixXd spring = support_spring(model_, support, options_.spring_stiffness);
-      const Eigen::VectorXd pull =
+      const ElementMatrix spring = support_spring(model_, support, options_.spring_stiffness);
+      const ElementVector pull =
           support_spring_load(model_, support, options_.spring_stiffness, t1);
-      const std::vector<int>& spring_dofs = element_raw[at(support.point.element)];
-      for (std::size_t i = 0; i < spring_dofs.size(); ++i)
-        f(spring_dofs[i]) += pull(static_cast<Eigen::Index>(i));
-      const Reduction& r = reductions[model_.elements.size() + s];
-      const int plan = static_cast<int>(model_.elements.size() + s);
-      if (r.transform.size() == 0)
-        a.add(plan, spring);
-      else
-        a.add(plan, r.transform.transpose() * spring * r.transform);
+      const ElementDofs dofs = model_.element_dofs(support.point.element);
+      for (Eigen::Index i = 0; i < dofs.size(); ++i)
+        f(dofs(i)) += pull(i);
+      scatter(static_cast<int>(model_.elements.size() + s), spring,
+              transform_of[at(support.point.element)]);
     }
     const Eigen::VectorXd rhs = map.restrict(f) + rhs_correction;
+    lap(clock, counters_.seconds_assembly);
 
     // Solve.
     if (rebuilt || !impl_->analysed) {
@@ -330,6 +367,7 @@ StepReport TimeStepper::step(double until) {
         throw NumericalError("the symbolic analysis of the step matrix failed");
       impl_->analysed = true;
     }
+    lap(clock, counters_.seconds_analysis);
     const SolveStatus factor = impl_->solver.factorize(a.matrix());
     if (factor != SolveStatus::ok) {
       // Name the body whose unknowns made the matrix singular.
@@ -358,9 +396,11 @@ StepReport TimeStepper::step(double until) {
       }
       throw NumericalError(message.str());
     }
+    lap(clock, counters_.seconds_factorization);
     Eigen::VectorXd reduced;
     if (impl_->solver.solve(rhs, reduced) != SolveStatus::ok)
       throw NumericalError("the solve of the step system failed");
+    lap(clock, counters_.seconds_solve);
     raw = map.expand(reduced);
     if (!raw.allFinite())
       throw NumericalError("the step displacement is not finite");
@@ -387,6 +427,7 @@ StepReport TimeStepper::step(double until) {
     break;
   }
 
+  Clock::time_point update_clock = Clock::now();
   // Commit: velocities (Shi eq. 2.18-2.19: v1 = 2 d / dt - v0), stresses, geometry.
   if (options_.integration == TimeIntegration::dynamic)
     velocity_ = (2.0 / dt) * raw - velocity_;
@@ -420,20 +461,22 @@ StepReport TimeStepper::step(double until) {
   // Kinetic energy 1/2 v^T M v of the new velocities with the step's element masses.
   double kinetic = 0.0;
   if (options_.integration == TimeIntegration::dynamic) {
+    const int n = 3 * cover_basis_size(model_.order);
     for (int e = 0; e < model_.n_elements(); ++e) {
-      const Eigen::MatrixXd& mass = impl_->element_mass[at(e)];
-      const std::vector<int> dofs = model_.element_dofs(e);
-      const Eigen::Index n = mass.rows();
-      Eigen::VectorXd u(n);
-      Eigen::VectorXd v(n);
-      for (Eigen::Index i = 0; i < n; ++i) {
-        u(i) = velocity_(dofs[at(static_cast<int>(2 * i))]);
-        v(i) = velocity_(dofs[at(static_cast<int>(2 * i + 1))]);
+      const Eigen::Map<const Eigen::MatrixXd> mass(
+          impl_->element_mass.data() + static_cast<std::ptrdiff_t>(e) * n * n, n, n);
+      const ElementDofs dofs = model_.element_dofs(e);
+      ShapeVector u(n);
+      ShapeVector v(n);
+      for (int i = 0; i < n; ++i) {
+        u(i) = velocity_(dofs(2 * i));
+        v(i) = velocity_(dofs(2 * i + 1));
       }
       kinetic += 0.5 * (u.dot(mass * u) + v.dot(mass * v));
     }
   }
   report.kinetic_energy = kinetic;
+  lap(update_clock, counters_.seconds_update);
   return report;
 }
 

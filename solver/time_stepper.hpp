@@ -65,6 +65,14 @@ struct StepperCounters {
   long contact_searches = 0;
   long pattern_builds = 0;
   long stress_updates = 0;
+  /// Wall time of each part of the steps so far, s (bench/step_bench.cpp reports them).
+  double seconds_constraints = 0.0;   ///< DofMap and the reduction of every element
+  double seconds_pattern = 0.0;       ///< sparsity pattern and scatter plans (when rebuilt)
+  double seconds_assembly = 0.0;      ///< element integrals, matrices and loads
+  double seconds_analysis = 0.0;      ///< symbolic analysis (when the pattern changed)
+  double seconds_factorization = 0.0; ///< numeric factorisation
+  double seconds_solve = 0.0;         ///< triangular solves
+  double seconds_update = 0.0;        ///< velocities, stresses, geometry, kinetic energy
 };
 
 /// Advances a model through time steps.
@@ -100,6 +108,8 @@ public:
   /// Warnings gathered during the run (e.g. a fixed time step exceeding the displacement
   /// limit), each reported once.
   [[nodiscard]] const std::vector<std::string>& warnings() const noexcept { return warnings_; }
+  /// The matrix of the last step's linear system (upper triangle), for benchmarks.
+  [[nodiscard]] const SparseMatrix& last_matrix() const;
   /// The model size used for max_step_displacement (m).
   [[nodiscard]] double model_size() const noexcept { return model_size_; }
 

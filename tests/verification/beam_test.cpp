@@ -112,7 +112,7 @@ struct Cantilever {
     double tip_error = 0.0;    ///< relative error of the tip deflection
   };
 
-    [[nodiscard]] Result solve(double size, int order) const {
+  [[nodiscard]] Result solve(double size, int order) const {
     return solve(size, order, SupportMethod::exact, 0.0);
   }
 
@@ -124,7 +124,7 @@ struct Cantilever {
                     line("loaded_end", {length, -depth / 2.0}, {length, depth / 2.0})},
                    {}, nullptr, size, material, order);
     Scene scene;
-        scene.supports = curve_support_points(s.model, 0, true, true, method, "fixed_end");
+    scene.supports = curve_support_points(s.model, 0, true, true, method, "fixed_end");
     impose(scene.supports, [&](const Point2& x) { return displacement(x); });
     CurveLoad shear;
     shear.curve = 1;
@@ -133,7 +133,7 @@ struct Cantilever {
       return Point2(sigma(0), sigma(2)); // normal +x: (sxx, sxy)
     };
     scene.curve_loads.push_back(shear);
-        const Point2 tip(length, 0.0);
+    const Point2 tip(length, 0.0);
     const Point2 moved = solve_static(s, scene, tip, penalty * material.young);
     Result r;
     auto exact_stress = [&](const Point2& x) { return stress(x); };
