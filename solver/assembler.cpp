@@ -25,6 +25,16 @@ void Assembler::reset(const SparsityPattern& pattern) {
   clear_plans();
 }
 
+std::span<const double> Assembler::values() const {
+  return {matrix_.valuePtr(), static_cast<std::size_t>(matrix_.nonZeros())};
+}
+
+void Assembler::assign_values(std::span<const double> values) {
+  NMM_ASSERT(values.size() == static_cast<std::size_t>(matrix_.nonZeros()),
+             "assign_values needs one value per entry of the pattern");
+  std::copy(values.begin(), values.end(), matrix_.valuePtr());
+}
+
 void Assembler::zero() {
   std::fill_n(matrix_.valuePtr(), matrix_.nonZeros(), 0.0);
   rhs_.setZero();

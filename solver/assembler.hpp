@@ -44,6 +44,12 @@ public:
   /// Sets every matrix value and the right-hand side to zero; the pattern and plans stay.
   void zero();
 
+  /// The matrix values in the pattern's order: to keep the part that does not change within
+  /// a step (elements, supports) while open-close iterations add contact springs.
+  [[nodiscard]] std::span<const double> values() const;
+  /// Replaces every matrix value (same size and order as values()).
+  void assign_values(std::span<const double> values);
+
   /// Adds the upper triangle of the symmetric k x k @p local at @p dofs (k = dofs.size()),
   /// searching each position.
   /// @pre local is k x k; 0 <= dofs[a] < n_dofs() or negative; every coupled pair is in

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "solver/time_stepper.hpp"
 
+#include "contact/contact_system.hpp"
 #include "mesh/error.hpp"
 #include "solver/assembler.hpp"
 #include "solver/cholmod_solver.hpp"
@@ -47,28 +48,29 @@ struct Reduction {
 /// Appends the reduced unknowns of the raw unknowns @p raw to @p flat. Returns true when
 /// every one is free (the common case: then they are appended in local order and the local
 /// matrix scatters as it is); otherwise fills @p r and appends its sorted unknowns.
-bool reduce(const DofMap& map, const ElementDofs& raw, std::vector<int>& flat, Reduction& r) {
+bool reduce(const DofMap& map, std::span<const int> raw, std::vector<int>& flat, Reduction& r) {
   bool identity = true;
-  for (Eigen::Index i = 0; i < raw.size() && identity; ++i)
-    identity = !map.is_slave(raw(i));
+  for (std::size_t i = 0; i < raw.size() && identity; ++i)
+    identity = !map.is_slave(raw[i]);
   if (identity) {
-    for (Eigen::Index i = 0; i < raw.size(); ++i)
-      flat.push_back(map.reduced(raw(i)));
+    for (const int d : raw)
+      flat.push_back(map.reduced(d));
     return true;
   }
   std::vector<DofExpansion> expansions;
-  expansions.reserve(static_cast<std::size_t>(raw.size()));
+  expansions.reserve(raw.size());
   r.reduced.clear();
-  for (Eigen::Index i = 0; i < raw.size(); ++i) {
-    expansions.push_back(map.expansion(raw(i)));
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    expansions.push_back(map.expansion(raw[i]));
     for (const auto& [j, c] : expansions.back().terms)
       r.reduced.push_back(j);
   }
   std::sort(r.reduced.begin(), r.reduced.end());
   r.reduced.erase(std::unique(r.reduced.begin(), r.reduced.end()), r.reduced.end());
-  r.transform = Eigen::MatrixXd::Zero(raw.size(), static_cast<Eigen::Index>(r.reduced.size()));
-  r.constant = Eigen::VectorXd::Zero(raw.size());
-  for (Eigen::Index i = 0; i < raw.size(); ++i) {
+  const auto n = static_cast<Eigen::Index>(raw.size());
+  r.transform = Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(r.reduced.size()));
+  r.constant = Eigen::VectorXd::Zero(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
     const DofExpansion& e = expansions[static_cast<std::size_t>(i)];
     r.constant(i) = e.constant;
     for (const auto& [j, c] : e.terms) {
@@ -81,9 +83,37 @@ bool reduce(const DofMap& map, const ElementDofs& raw, std::vector<int>& flat, R
   return false;
 }
 
+/// Why the step matrix cannot be factorised, naming the body whose unknowns are free.
+std::string
+singular_message(const Model& model, const DofMap& map, long column, SolveStatus status) {
+  std::ostringstream message;
+  message << "the step matrix is singular (" << to_string(status) << ")";
+  if (column < 0)
+    return message.str();
+  for (int d = 0; d < model.n_dofs(); ++d) {
+    if (map.reduced(d) != column)
+      continue;
+    const ModelCover& cover = model.covers[at(d / model.dofs_per_cover())];
+    int material = -1;
+    for (const ModelElement& e : model.elements) {
+      if (e.block == cover.block)
+        material = e.material;
+    }
+    message << " at the unknowns of the cover near " << point_text(cover.position)
+            << (material >= 0 ? " (material \"" + model.materials[at(material)].name + "\")"
+                              : std::string())
+            << ": this body can move freely in " << ((d % 2) == 0 ? "x" : "y")
+            << "; hold it with a [[boundary]] support (static analysis) or give it mass "
+               "(dynamic analysis)";
+    break;
+  }
+  return message.str();
+}
+
 } // namespace
 
 struct TimeStepper::Impl {
+  std::unique_ptr<ContactSystem> contact;     // null when nothing can touch
   std::vector<LinearConstraint> dependencies; // order-1 fixes, chosen once
   CholmodSolver solver;
   SparsityPattern pattern;
@@ -98,9 +128,15 @@ struct TimeStepper::Impl {
   bool analysed = false;
 };
 
-TimeStepper::TimeStepper(Model& model, Scene scene, StepperOptions options)
+TimeStepper::TimeStepper(Model& model,
+                         Scene scene,
+                         StepperOptions options,
+                         std::unique_ptr<ContactSystem> contact)
     : model_(model), scene_(std::move(scene)), options_(options),
       velocity_(Eigen::VectorXd::Zero(model.n_dofs())), impl_(std::make_unique<Impl>()) {
+  // Skip what the scene does not need: no contact search where nothing can touch.
+  if (contact && ContactSystem::can_touch(model_))
+    impl_->contact = std::move(contact);
   BoundingBox box;
   for (const ModelElement& e : model_.elements) {
     for (const Polygon& p : e.polygons) {
@@ -122,7 +158,7 @@ TimeStepper::TimeStepper(Model& model, Scene scene, StepperOptions options)
                          model_.materials[at(m)].name + "] density in kg/m³");
       }
     }
-  } else {
+  } else if (!impl_->contact) {
     std::set<int> held;
     for (const SupportPoint& s : scene_.supports) {
       if (s.point.element >= 0)
@@ -149,6 +185,12 @@ const SolverCounters& TimeStepper::solver_counters() const { return impl_->solve
 int TimeStepper::n_unknowns() const { return impl_->pattern.n_dofs(); }
 
 const SparseMatrix& TimeStepper::last_matrix() const { return impl_->stiffness->matrix(); }
+
+double TimeStepper::contact_penetration() const {
+  return impl_->contact ? impl_->contact->max_penetration() : 0.0;
+}
+
+const ContactSystem* TimeStepper::contact() const { return impl_->contact.get(); }
 
 void TimeStepper::set_rigid_velocities(const std::vector<Point2>& block_velocity,
                                        const std::vector<double>& block_angular_velocity) {
@@ -188,10 +230,24 @@ Point2 TimeStepper::velocity_at(int element, const Point2& x) const {
   return model_.displacement(element, x, velocity_);
 }
 
-StepReport TimeStepper::step(double until) {
-  const bool dynamic = options_.integration == TimeIntegration::dynamic;
-  // Static analysis without contact: one solve with the stiffness alone per step.
-  const bool with_mass = dynamic;
+StepReport TimeStepper::step(double until) { return advance(until, false); }
+
+StepReport TimeStepper::equilibrate() {
+  try {
+    return advance(time_, true);
+  } catch (const NumericalError& e) {
+    throw NumericalError(std::string("initial equilibrium: ") + e.what() +
+                         " (the initial equilibrium needs every body held by supports or by "
+                         "contacts that touch)");
+  }
+}
+
+StepReport TimeStepper::advance(double until, bool equilibrium) {
+  const bool dynamic = options_.integration == TimeIntegration::dynamic && !equilibrium;
+  // Static analysis without contact: one solve with the stiffness alone per step; with
+  // contact, Shi's static keeps the inertia term and resets the velocity every step. The
+  // initial equilibrium is a solve with the stiffness alone, at the current time.
+  const bool with_mass = !equilibrium && (dynamic || impl_->contact != nullptr);
   const double limit = options_.max_step_displacement * model_size_;
 
   double dt = 0.0;
@@ -221,10 +277,18 @@ StepReport TimeStepper::step(double until) {
     else
       dt = std::sqrt(2.0 * limit / 9.81);
   }
-  dt = std::min(dt, std::max(until - time_, 1e-300));
+  dt = equilibrium ? 0.0 : std::min(dt, std::max(until - time_, 1e-300));
 
   StepReport report;
   Eigen::VectorXd raw;
+  // Contacts are found once per step; a cut step continues the open-close iteration from the
+  // modes it reached (Shi 8.2: "the time step will be reduced to one third, and the
+  // open-close iteration continues").
+  if (impl_->contact) {
+    impl_->contact->begin_step(model_, limit);
+    impl_->contact->set_hold_shear(equilibrium);
+    ++counters_.contact_searches;
+  }
   for (int cut = 0;; ++cut) {
     const double t1 = time_ + dt;
     Clock::time_point clock = Clock::now();
@@ -245,7 +309,8 @@ StepReport TimeStepper::step(double until) {
     std::vector<Reduction> transforms;
     for (int e = 0; e < model_.n_elements(); ++e) {
       Reduction r;
-      if (!reduce(map, model_.element_dofs(e), flat, r)) {
+      const ElementDofs dofs = model_.element_dofs(e);
+      if (!reduce(map, {dofs.data(), static_cast<std::size_t>(dofs.size())}, flat, r)) {
         transform_of[at(e)] = static_cast<int>(transforms.size());
         transforms.push_back(std::move(r));
       }
@@ -261,6 +326,23 @@ StepReport TimeStepper::step(double until) {
         spring_of.push_back(static_cast<int>(s));
       }
     }
+    // Every contact found at the start of the step is in the pattern (DESIGN.md): the
+    // symbolic analysis runs once per step, open-close iterations only refactorise.
+    std::vector<std::vector<int>> contact_dofs;
+    std::vector<int> contact_transform;
+    if (impl_->contact) {
+      for (int i = 0; i < impl_->contact->n_points(); ++i) {
+        contact_dofs.push_back(impl_->contact->point_dofs(model_, i));
+        Reduction r;
+        contact_transform.push_back(-1);
+        if (!reduce(map, contact_dofs.back(), flat, r)) {
+          contact_transform.back() = static_cast<int>(transforms.size());
+          transforms.push_back(std::move(r));
+        }
+        starts.push_back(static_cast<int>(flat.size()));
+      }
+    }
+    const int first_contact_plan = static_cast<int>(model_.elements.size() + spring_of.size());
     auto coupling = [&](std::size_t k) {
       return std::span<const int>(flat.data() + starts[k], at(starts[k + 1] - starts[k]));
     };
@@ -301,7 +383,7 @@ StepReport TimeStepper::step(double until) {
     const int n_shapes = 3 * cover_basis_size(model_.order);
     if (with_mass)
       impl_->element_mass.resize(model_.elements.size() * at(n_shapes * n_shapes));
-    auto scatter = [&](int plan, const ElementMatrix& local, int transform) {
+    auto scatter = [&](int plan, const auto& local, int transform) {
       if (transform < 0) {
         a.add(plan, local);
         return;
@@ -358,52 +440,99 @@ StepReport TimeStepper::step(double until) {
       scatter(static_cast<int>(model_.elements.size() + s), spring,
               transform_of[at(support.point.element)]);
     }
-    const Eigen::VectorXd rhs = map.restrict(f) + rhs_correction;
     lap(clock, counters_.seconds_assembly);
 
-    // Solve.
-    if (rebuilt || !impl_->analysed) {
-      if (impl_->solver.analyze(a.matrix()) != SolveStatus::ok)
-        throw NumericalError("the symbolic analysis of the step matrix failed");
-      impl_->analysed = true;
-    }
-    lap(clock, counters_.seconds_analysis);
-    const SolveStatus factor = impl_->solver.factorize(a.matrix());
-    if (factor != SolveStatus::ok) {
-      // Name the body whose unknowns made the matrix singular.
-      const long column = impl_->solver.failed_column();
-      std::ostringstream message;
-      message << "the step matrix is singular (" << to_string(factor) << ")";
-      if (column >= 0) {
-        for (int d = 0; d < model_.n_dofs(); ++d) {
-          if (map.reduced(d) == column) {
-            const ModelCover& cover = model_.covers[at(d / model_.dofs_per_cover())];
-            int material = -1;
-            for (const ModelElement& e : model_.elements) {
-              if (e.block == cover.block)
-                material = e.material;
-            }
-            message << " at the unknowns of the cover near " << point_text(cover.position)
-                    << (material >= 0
-                            ? " (material \"" + model_.materials[at(material)].name + "\")"
-                            : std::string())
-                    << ": this body can move freely in " << ((d % 2) == 0 ? "x" : "y")
-                    << "; hold it with a [[boundary]] support (static analysis) or give it "
-                       "mass (dynamic analysis)";
-            break;
-          }
+    // Open-close iterations (Shi 8.2): the elements and supports stay, the contact springs
+    // and friction loads follow the modes until no contact changes its mode and friction
+    // agrees with the normal forces. An iteration in which only the friction loads changed
+    // has the same matrix: it reuses the factor (one more solve, no refactorisation).
+    std::vector<double> base_values;
+    const Eigen::VectorXd base_correction = rhs_correction;
+    if (impl_->contact)
+      base_values.assign(a.values().begin(), a.values().end());
+    bool converged = !impl_->contact;
+    bool assemble = true;
+    int iteration = 0;
+    int factorisations = 0;
+    int friction_solves = 0;
+    for (;;) {
+      ++iteration;
+      Eigen::VectorXd f_iteration = f;
+      if (impl_->contact) {
+        if (assemble && iteration > 1)
+          a.assign_values(base_values);
+        if (assemble)
+          rhs_correction = base_correction;
+        Eigen::MatrixXd spring;
+        Eigen::VectorXd load;
+        for (int i = 0; i < impl_->contact->n_points(); ++i) {
+          impl_->contact->contribution(model_, i, spring, load);
+          if (impl_->contact->points()[at(i)].mode == ContactMode::open)
+            continue;
+          const std::vector<int>& dofs = contact_dofs[at(i)];
+          for (std::size_t j = 0; j < dofs.size(); ++j)
+            f_iteration(dofs[j]) += load(static_cast<Eigen::Index>(j));
+          if (assemble)
+            scatter(first_contact_plan + i, spring, contact_transform[at(i)]);
         }
       }
-      throw NumericalError(message.str());
+      const Eigen::VectorXd rhs = map.restrict(f_iteration) + rhs_correction;
+      lap(clock, counters_.seconds_assembly);
+      if (rebuilt || !impl_->analysed) {
+        if (impl_->solver.analyze(a.matrix()) != SolveStatus::ok)
+          throw NumericalError("the symbolic analysis of the step matrix failed");
+        impl_->analysed = true;
+        rebuilt = false;
+      }
+      lap(clock, counters_.seconds_analysis);
+      if (assemble) {
+        const SolveStatus factor = impl_->solver.factorize(a.matrix());
+        if (factor != SolveStatus::ok)
+          throw NumericalError(
+              singular_message(model_, map, impl_->solver.failed_column(), factor));
+        ++factorisations;
+      }
+      lap(clock, counters_.seconds_factorization);
+      Eigen::VectorXd reduced;
+      if (impl_->solver.solve(rhs, reduced) != SolveStatus::ok)
+        throw NumericalError("the solve of the step system failed");
+      lap(clock, counters_.seconds_solve);
+      raw = map.expand(reduced);
+      if (!raw.allFinite())
+        throw NumericalError("the step displacement is not finite");
+      if (!impl_->contact)
+        break;
+      const ModeUpdate update = impl_->contact->update_modes(model_, raw);
+      if (impl_->contact->converged(update)) {
+        converged = true;
+        break;
+      }
+      assemble = update.changes > 0;
+      // The initial equilibrium cannot be cut: it has ten times the iterations.
+      if (assemble ? factorisations >= options_.open_close_max * (equilibrium ? 10 : 1)
+                   : ++friction_solves >= options_.friction_solves_max)
+        break;
     }
-    lap(clock, counters_.seconds_factorization);
-    Eigen::VectorXd reduced;
-    if (impl_->solver.solve(rhs, reduced) != SolveStatus::ok)
-      throw NumericalError("the solve of the step system failed");
-    lap(clock, counters_.seconds_solve);
-    raw = map.expand(reduced);
-    if (!raw.allFinite())
-      throw NumericalError("the step displacement is not finite");
+    report.open_close_iterations = iteration;
+    if (!converged) {
+      // Shi 8.2: not converged within the allowed iterations: the step is cut to a third.
+      if (cut < options_.max_step_cuts && !equilibrium) {
+        dt /= 3.0;
+        ++report.step_cuts;
+        ++counters_.step_cuts;
+        continue;
+      }
+      const std::string where =
+          equilibrium ? "the open-close iteration does not converge in " +
+                            std::to_string(factorisations) + " iterations"
+                      : "step " + std::to_string(step_ + 1) +
+                            ": the open-close iteration does not converge even with a time "
+                            "step cut " +
+                            std::to_string(options_.max_step_cuts) + " times";
+      throw NumericalError(where + "; the contacts keep changing mode (e.g. " +
+                           impl_->contact->describe(impl_->contact->last_changed()) +
+                           "); check the penalty and the time step");
+    }
 
     double largest = 0.0;
     for (int c = 0; c < model_.n_covers(); ++c)
@@ -429,10 +558,17 @@ StepReport TimeStepper::step(double until) {
 
   Clock::time_point update_clock = Clock::now();
   // Commit: velocities (Shi eq. 2.18-2.19: v1 = 2 d / dt - v0), stresses, geometry.
-  if (options_.integration == TimeIntegration::dynamic)
+  if (equilibrium)
+    velocity_.setZero();
+  else if (options_.integration == TimeIntegration::dynamic)
     velocity_ = (2.0 / dt) * raw - velocity_;
   else
     velocity_.setZero();
+  if (impl_->contact) {
+    // Closed contacts carry over with the kinematics of this step (before the geometry moves).
+    impl_->contact->end_step(model_, raw);
+    report.contacts = impl_->contact->n_closed();
+  }
   model_.accumulate_stress(raw);
   ++counters_.stress_updates;
   std::vector<MaterialPoint> points;
@@ -451,16 +587,18 @@ StepReport TimeStepper::step(double until) {
   for (MaterialPoint& p : scene_.monitors)
     p = points[k++];
 
-  time_ += dt;
-  ++step_;
-  ++counters_.steps;
+  if (!equilibrium) {
+    time_ += dt;
+    ++step_;
+    ++counters_.steps;
+  }
   report.step = step_;
   report.time = time_;
   report.dt = dt;
-  report.open_close_iterations = 1;
+
   // Kinetic energy 1/2 v^T M v of the new velocities with the step's element masses.
   double kinetic = 0.0;
-  if (options_.integration == TimeIntegration::dynamic) {
+  if (options_.integration == TimeIntegration::dynamic && !equilibrium) {
     const int n = 3 * cover_basis_size(model_.order);
     for (int e = 0; e < model_.n_elements(); ++e) {
       const Eigen::Map<const Eigen::MatrixXd> mass(

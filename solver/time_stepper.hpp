@@ -6,6 +6,7 @@
 // maximum step displacement (section 8.5).
 #pragma once
 
+#include "contact/contact_system.hpp"
 #include "manifold/boundary_conditions.hpp"
 #include "manifold/model.hpp"
 #include "solver/dof_map.hpp"
@@ -32,8 +33,15 @@ struct StepperOptions {
   double max_step_displacement = 0.01;
   /// Stiffness of penalty supports, N/m (Shi's p, 40 E by default from the case file).
   double spring_stiffness = 0.0;
-  /// How often a step may be cut (to a half, in automatic mode) before the run stops.
+  /// How often a step may be cut (to a half in automatic mode for the displacement limit,
+  /// to a third when the open-close iteration does not converge) before the run stops.
   int max_step_cuts = 10;
+  /// Open-close iterations with mode changes (each a refactorisation) per step before the
+  /// step is cut (Shi 8.2).
+  int open_close_max = 6;
+  /// Solves with the same factor for friction alone (no mode changed, the friction loads
+  /// still moving) per step before the step is cut.
+  int friction_solves_max = 50;
 };
 
 /// What stays defined through the run: supports, loads and the material points to follow.
@@ -48,10 +56,10 @@ struct Scene {
 
 /// One completed step (a row of history.csv).
 struct StepReport {
-  long step = 0;     ///< 1-based
-  double time = 0.0; ///< at the end of the step, s
-  double dt = 0.0;   ///< s
-  int open_close_iterations = 0;
+  long step = 0;                 ///< 1-based
+  double time = 0.0;             ///< at the end of the step, s
+  double dt = 0.0;               ///< s
+  int open_close_iterations = 0; ///< solves of the last try of the step (with friction solves)
   int contacts = 0;
   int step_cuts = 0;             ///< times this step was cut and redone
   double kinetic_energy = 0.0;   ///< J (per metre in plane strain)
@@ -81,7 +89,12 @@ public:
   /// @throws InputError for a scene that cannot be solved: a dynamic analysis with a
   ///         massless material, or a static one with a body that nothing holds (naming the
   ///         material and a point of the body).
-  TimeStepper(Model& model, Scene scene, StepperOptions options);
+  /// @param contact  the contact system, or null: a model in which nothing can touch (one
+  ///                 block, no joint face) never searches for contact.
+  TimeStepper(Model& model,
+              Scene scene,
+              StepperOptions options,
+              std::unique_ptr<ContactSystem> contact = nullptr);
   ~TimeStepper();
   TimeStepper(const TimeStepper&) = delete;
   TimeStepper& operator=(const TimeStepper&) = delete;
@@ -94,6 +107,15 @@ public:
   /// One time step ending at most at @p until (s). @throws NumericalError when the step
   /// cannot be solved even after max_step_cuts cuts, with what went wrong.
   StepReport step(double until);
+
+  /// Initial equilibrium (a geostatic step): one static solve of the loads at the current
+  /// time with every contact that touches locked (no sliding; contacts in tension open), so
+  /// that the contact springs carry the weight and the stresses start in equilibrium before
+  /// the first step; the geometry moves by the (small) settlement, the velocities stay zero,
+  /// time and step count do not advance. Without it, bodies resting on each other start
+  /// with unloaded springs and drop into them during the first steps.
+  /// @throws NumericalError when a body is held neither by supports nor by contacts.
+  StepReport equilibrate();
 
   /// Raw velocity of every unknown (m/s).
   [[nodiscard]] const Eigen::VectorXd& velocity() const noexcept { return velocity_; }
@@ -110,11 +132,17 @@ public:
   [[nodiscard]] const std::vector<std::string>& warnings() const noexcept { return warnings_; }
   /// The matrix of the last step's linear system (upper triangle), for benchmarks.
   [[nodiscard]] const SparseMatrix& last_matrix() const;
+  /// Largest penetration of a closed contact at the end of the last step (m); 0 without
+  /// contact.
+  [[nodiscard]] double contact_penetration() const;
+  /// Closed contacts and contact points at the end of the last step, for output.
+  [[nodiscard]] const ContactSystem* contact() const;
   /// The model size used for max_step_displacement (m).
   [[nodiscard]] double model_size() const noexcept { return model_size_; }
 
 private:
   struct Impl;
+  StepReport advance(double until, bool equilibrium);
   Model& model_;
   Scene scene_;
   StepperOptions options_;

@@ -113,12 +113,13 @@ struct Setup {
   Model model;
 };
 
+/// As make_setup() below, with one material per region.
 inline Setup make_setup(std::vector<MaterialRegion> regions,
                         std::vector<NamedCurve> curves,
                         std::vector<int> joints,
                         const MathMesh* math,
                         double size,
-                        const ElasticMaterial& material,
+                        const std::vector<ElasticMaterial>& materials,
                         int order) {
   Setup s;
   s.physical.source = "verification";
@@ -128,11 +129,24 @@ inline Setup make_setup(std::vector<MaterialRegion> regions,
   s.math =
       math != nullptr ? *math : make_regular_math_mesh(material_bounding_box(s.physical), size);
   s.covers = build_cover_system(s.math, s.physical, joints);
-  std::vector<ElasticMaterial> materials(s.physical.regions.size(), material);
   ModelOptions options;
   options.order = order;
   s.model = make_model(s.covers, s.math, materials, options);
   return s;
+}
+
+/// Physical mesh + regular math mesh of @p size (or @p math) + cover system + model, one
+/// material for every region.
+inline Setup make_setup(std::vector<MaterialRegion> regions,
+                        std::vector<NamedCurve> curves,
+                        std::vector<int> joints,
+                        const MathMesh* math,
+                        double size,
+                        const ElasticMaterial& material,
+                        int order) {
+  const std::size_t n = regions.size();
+  return make_setup(std::move(regions), std::move(curves), std::move(joints), math, size,
+                    std::vector<ElasticMaterial>(n, material), order);
 }
 
 } // namespace nmm::testing

@@ -1,0 +1,828 @@
+// SPDX-License-Identifier: MIT
+#include "contact/contact_system.hpp"
+
+#include "mesh/error.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+namespace nmm {
+
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+/// perp(w) = (w.y, -w.x): cross(u, w) = u . perp(w).
+Point2 perp(const Point2& w) { return {w.y(), -w.x()}; }
+
+JointStrength weaker(const JointStrength& a, const JointStrength& b) {
+  return {std::min(a.friction_angle, b.friction_angle), std::min(a.cohesion, b.cohesion),
+          std::min(a.tensile_strength, b.tensile_strength)};
+}
+
+std::string point_text(const Point2& p) {
+  std::ostringstream out;
+  out.precision(6);
+  out << '(' << p.x() << ", " << p.y() << ')';
+  return out.str();
+}
+
+bool closed(ContactMode m) { return m != ContactMode::open; }
+
+// Gauss-Legendre points on [0, 1]: two for order-0 covers (the squared gap along an edge is
+// of degree 2), three for order 1 (degree 4).
+constexpr std::array<double, 2> xi2{0.21132486540518712, 0.78867513459481288};
+constexpr std::array<double, 2> w2{0.5, 0.5};
+constexpr std::array<double, 3> xi3{0.11270166537925831, 0.5, 0.88729833462074169};
+constexpr std::array<double, 3> w3{5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
+
+/// A part [from, to] of an overlap, or none.
+struct Part {
+  bool found = false;
+  double from = 0.0;
+  double to = 0.0;
+};
+
+/// The gap along an edge-to-edge overlap [lo, hi] (slave parameters): linear from its values
+/// at the ends (order-0 covers), or quadratic through the ends and the middle (order 1).
+class GapProfile {
+public:
+  GapProfile(double lo, double hi, const std::vector<double>& g) : lo_(lo), hi_(hi), c_(g.front()) {
+    b_ = g.back() - g.front();
+    if (g.size() == 3) {
+      b_ = 4.0 * g[1] - 3.0 * g[0] - g[2];
+      a_ = 2.0 * g[2] + 2.0 * g[0] - 4.0 * g[1];
+    }
+  }
+
+  [[nodiscard]] double at(double u) const {
+    const double s = hi_ > lo_ ? (u - lo_) / (hi_ - lo_) : 0.0;
+    return (a_ * s + b_) * s + c_;
+  }
+
+  /// The part where the gap is negative (for a quadratic, the hull of its negative parts).
+  /// Parts shorter than 1e-6 of the overlap count as none.
+  [[nodiscard]] Part negative() const {
+    std::vector<double> cuts{0.0, 1.0};
+    if (std::abs(a_) > 1e-14 * (std::abs(b_) + std::abs(c_))) {
+      const double disc = b_ * b_ - 4.0 * a_ * c_;
+      if (disc > 0.0) {
+        const double q = -0.5 * (b_ + std::copysign(std::sqrt(disc), b_)); // stable roots
+        cuts.push_back(q / a_);
+        if (q != 0.0)
+          cuts.push_back(c_ / q);
+      }
+    } else if (b_ != 0.0) {
+      cuts.push_back(-c_ / b_);
+    }
+    std::erase_if(cuts, [](double s) { return !(s >= 0.0 && s <= 1.0); });
+    std::sort(cuts.begin(), cuts.end());
+    double first = 2.0;
+    double last = -1.0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const double mid = 0.5 * (cuts[k] + cuts[k + 1]);
+      if (cuts[k + 1] > cuts[k] && (a_ * mid + b_) * mid + c_ < 0.0) {
+        first = std::min(first, cuts[k]);
+        last = std::max(last, cuts[k + 1]);
+      }
+    }
+    if (last - first < 1e-6)
+      return {};
+    return {true, lo_ + (hi_ - lo_) * first, lo_ + (hi_ - lo_) * last};
+  }
+
+  /// Integral of |gap| du over [from, to] (Simpson's rule on a quadratic: exact where the
+  /// gap keeps its sign).
+  [[nodiscard]] double magnitude(double from, double to) const {
+    if (to <= from)
+      return 0.0;
+    return (to - from) / 6.0 *
+           (std::abs(at(from)) + 4.0 * std::abs(at(0.5 * (from + to))) + std::abs(at(to)));
+  }
+
+  /// Integral of |gap| du over the parts of [f1, t1] outside [f2, t2].
+  [[nodiscard]] double outside(double f1, double t1, double f2, double t2) const {
+    return magnitude(f1, std::min(t1, f2)) + magnitude(std::max(f1, t2), t1);
+  }
+
+private:
+  double lo_;
+  double hi_;
+  double a_ = 0.0;
+  double b_ = 0.0;
+  double c_;
+};
+
+/// Lagrange interpolation of the (u, value) pairs at u (constant for one pair).
+double interpolate(const std::vector<std::pair<double, double>>& values, double u) {
+  if (values.size() == 1)
+    return values.front().second;
+  double result = 0.0;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    double basis = 1.0;
+    for (std::size_t j = 0; j < values.size(); ++j) {
+      if (j == i)
+        continue;
+      const double span = values[i].first - values[j].first;
+      if (std::abs(span) < 1e-12) // points on a vanishing part: take their mean
+        return values.front().second;
+      basis *= (u - values[j].first) / span;
+    }
+    result += basis * values[i].second;
+  }
+  return result;
+}
+
+} // namespace
+
+/// The linearised kinematics of one contact point (Shi 3.4-3.5; eq. 3.12-3.16, 3.21-3.24):
+/// normal gap g = g0 + hn . d and shear displacement s = s0 + hs . d on the coupled unknowns.
+struct ContactSystem::Kinematics {
+  std::vector<int> dofs;
+  Eigen::VectorXd hn;
+  Eigen::VectorXd hs;
+  double g0 = 0.0;
+  double s0 = 0.0;
+
+  [[nodiscard]] double gap(const Eigen::VectorXd& raw) const {
+    double g = g0;
+    for (std::size_t j = 0; j < dofs.size(); ++j)
+      g += hn(static_cast<Eigen::Index>(j)) * raw(dofs[j]);
+    return g;
+  }
+  [[nodiscard]] double tangential(const Eigen::VectorXd& raw) const {
+    double s = 0.0;
+    for (std::size_t j = 0; j < dofs.size(); ++j)
+      s += hs(static_cast<Eigen::Index>(j)) * raw(dofs[j]);
+    return s;
+  }
+};
+
+ContactSystem::ContactSystem(ContactOptions options,
+                             std::vector<std::vector<JointStrength>> strength_of_edge,
+                             std::vector<std::vector<bool>> bonded_edge)
+    : options_(options), strength_of_edge_(std::move(strength_of_edge)),
+      bonded_edge_(std::move(bonded_edge)) {
+  NMM_ASSERT(options_.penalty > 0.0 && options_.spring_length > 0.0,
+             "contact springs need stiffness");
+}
+
+bool ContactSystem::can_touch(const Model& model) {
+  if (model.blocks.size() > 1)
+    return true;
+  for (const BoundaryLoop& loop : model.loops) {
+    for (const BoundaryEdge& edge : loop.edges) {
+      if (edge.joint >= 0)
+        return true;
+    }
+  }
+  return false;
+}
+
+double ContactSystem::projection(int master, const Point2& x) const {
+  const Point2& a = boundary_.position[at(master)];
+  const Point2 edge = boundary_.position[at(boundary_.next[at(master)])] - a;
+  return std::clamp((x - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+}
+
+template <class AnchorOf>
+void ContactSystem::place(Group& g, double from, double to, const AnchorOf& anchor_of) {
+  g.from = from;
+  g.to = to;
+  const ContactPoint& lead = points_[at(g.first)];
+  const Point2& a = boundary_.position[at(lead.slave_edge)];
+  const Point2& d = boundary_.position[at(boundary_.next[at(lead.slave_edge)])];
+  // Lengths along the master (the projection of the part), so that a pair of parallel
+  // edges integrates exactly as one joint element (Goodman).
+  const double span = std::abs(g.t_next - g.t_first) * (to - from);
+  const double alpha = options_.penalty / options_.spring_length;
+  for (int q = 0; q < g.count; ++q) {
+    ContactPoint& p = points_[at(g.first + q)];
+    const double xi = gauss_ == 2 ? xi2[at(q)] : xi3[at(q)];
+    const double w = gauss_ == 2 ? w2[at(q)] : w3[at(q)];
+    p.u = from + (to - from) * xi;
+    p.slave = a + p.u * (d - a);
+    p.length = w * span;
+    p.stiffness = alpha * p.length;
+    p.anchor = anchor_of(p.u, p.slave);
+  }
+}
+
+void ContactSystem::begin_step(const Model& model, double max_step_displacement) {
+  ++counters_.searches;
+  // The boundary at the start of the step.
+  boundary_ = ContactBoundary{};
+  edge_element_.clear();
+  edge_strength_.clear();
+  edge_bonded_.clear();
+  for (std::size_t l = 0; l < model.loops.size(); ++l) {
+    const BoundaryLoop& loop = model.loops[l];
+    const int base = boundary_.n_vertices();
+    const int n = loop.n_vertices();
+    for (int k = 0; k < n; ++k) {
+      boundary_.position.push_back(loop.vertices[at(k)]);
+      boundary_.next.push_back(base + (k + 1) % n);
+      boundary_.previous.push_back(base + (k + n - 1) % n);
+      boundary_.loop.push_back(static_cast<int>(l));
+      boundary_.block.push_back(loop.block);
+      edge_element_.push_back(loop.edges[at(k)].element);
+      edge_strength_.push_back(strength_of_edge_[l][at(k)]);
+      edge_bonded_.push_back(bonded_edge_[l][at(k)] ? 1 : 0);
+    }
+  }
+  // Block areas of the first step: the choice of master edges never changes with the
+  // deformation (contact keys stay the same).
+  if (block_area_.empty()) {
+    block_area_.assign(model.blocks.size(), 0.0);
+    for (const ModelElement& e : model.elements)
+      block_area_[at(e.block)] += e.area;
+  }
+  boundary_.block_area = block_area_;
+  DetectionOptions detection = options_.detection;
+  detection.distance = 2.0 * max_step_displacement;
+  detection.penetration = 0.1 * detection.distance;
+  std::vector<std::uint64_t> keep;
+  keep.reserve(carried_.size());
+  for (const auto& [key, state] : carried_)
+    keep.push_back(key);
+  const std::vector<ContactCandidate> candidates =
+      detect_contacts(boundary_, detection, keep, &counters_.detection);
+
+  // Contacts found by the slave or the master of a carried contact, for the transfer of a
+  // contact whose slave moved on to the next edge (Shi 3.3).
+  std::unordered_multimap<int, std::uint64_t> carried_by_slave;
+  std::unordered_multimap<int, std::uint64_t> carried_by_master;
+  for (const auto& [key, state] : carried_) {
+    carried_by_slave.emplace(state.slave, key);
+    carried_by_master.emplace(state.master, key);
+  }
+  auto neighbour = [&](const ContactCandidate& c) -> const Carried* {
+    const bool edge = c.kind == ContactKind::edge_edge;
+    auto adjacent = [&](int e, int f) {
+      return boundary_.next[at(e)] == f || boundary_.next[at(f)] == e;
+    };
+    auto [s0, s1] = carried_by_slave.equal_range(c.slave);
+    for (auto it = s0; it != s1; ++it) {
+      const Carried& state = carried_.at(it->second);
+      if (closed(state.mode) && ((it->second & 1U) != 0) == edge &&
+          adjacent(state.master, c.master))
+        return &state;
+    }
+    if (!edge)
+      return nullptr;
+    auto [m0, m1] = carried_by_master.equal_range(c.master);
+    for (auto it = m0; it != m1; ++it) {
+      const Carried& state = carried_.at(it->second);
+      if (closed(state.mode) && (it->second & 1U) != 0 && adjacent(state.slave, c.slave))
+        return &state;
+    }
+    return nullptr;
+  };
+
+  points_.clear();
+  groups_.clear();
+  gauss_ = model.order == 0 ? 2 : 3;
+  for (const ContactCandidate& c : candidates) {
+    Group g;
+    g.key = c.key();
+    g.edge = c.kind == ContactKind::edge_edge;
+    g.first = n_points();
+    ContactPoint p;
+    p.key = g.key;
+    p.slave_edge = c.slave;
+    p.master = c.master;
+    const Point2& ma = boundary_.position[at(c.master)];
+    const Point2& mb = boundary_.position[at(boundary_.next[at(c.master)])];
+    const Point2 tangent = (mb - ma).normalized();
+    const Point2 normal = perp(mb - ma).normalized();
+    std::vector<double> g0; // gap at the start of the step: at the point, or along the overlap
+    if (!g.edge) {
+      p.slave = boundary_.position[at(c.slave)];
+      p.alternative_slave_vertex = c.alternative_slave;
+      p.alternative_master = c.alternative_master;
+      const int v = c.slave;
+      p.length = 0.5 * ((boundary_.position[at(boundary_.next[at(v)])] - p.slave).norm() +
+                        (boundary_.position[at(boundary_.previous[at(v)])] - p.slave).norm());
+      p.stiffness = options_.penalty;
+      p.strength =
+          weaker(weaker(edge_strength_[at(v)], edge_strength_[at(boundary_.previous[at(v)])]),
+                 edge_strength_[at(c.master)]);
+      p.bonded = edge_bonded_[at(v)] != 0 && edge_bonded_[at(c.master)] != 0;
+      p.anchor = projection(c.master, p.slave);
+      g.count = 1;
+      points_.push_back(p);
+      g0.push_back((p.slave - ma).dot(normal));
+    } else {
+      // The overlap of the slave edge's projection on the master, as slave parameters.
+      const Point2& a = boundary_.position[at(c.slave)];
+      const Point2& d = boundary_.position[at(boundary_.next[at(c.slave)])];
+      const double length = (mb - ma).norm();
+      g.t_first = (a - ma).dot(tangent);
+      g.t_next = (d - ma).dot(tangent);
+      const double t_lo = std::max(0.0, std::min(g.t_first, g.t_next));
+      const double t_hi = std::min(length, std::max(g.t_first, g.t_next));
+      if (t_hi - t_lo <= 1e-6 * length) // as in the detection: an end that only touches
+        continue;
+      const double u1 = (t_lo - g.t_first) / (g.t_next - g.t_first);
+      const double u2 = (t_hi - g.t_first) / (g.t_next - g.t_first);
+      g.lo = std::clamp(std::min(u1, u2), 0.0, 1.0);
+      g.hi = std::clamp(std::max(u1, u2), 0.0, 1.0);
+      p.strength = weaker(edge_strength_[at(c.slave)], edge_strength_[at(c.master)]);
+      p.bonded = edge_bonded_[at(c.slave)] != 0 && edge_bonded_[at(c.master)] != 0;
+      g.count = gauss_;
+      for (int q = 0; q < gauss_; ++q) {
+        p.gauss = q;
+        points_.push_back(p);
+      }
+      for (const double u : {g.lo, g.hi})
+        g0.push_back((a + u * (d - a) - ma).dot(normal));
+    }
+    ContactPoint& lead = points_[at(g.first)];
+    if (broken_.count(g.key) != 0) {
+      for (int q = 0; q < g.count; ++q)
+        points_[at(g.first + q)].bonded = false;
+    }
+    // The state at the start of the step (Shi 3.3): carried, taken over from the contact
+    // the slave moved on from, or new. An intact joint, and a contact already touching,
+    // start locked (not open for one free-flight iteration: that would take a whole step's
+    // worth of penetration first).
+    const auto carried = carried_.find(g.key);
+    const Carried* state = carried != carried_.end() ? &carried->second : neighbour(c);
+    const bool touching = *std::min_element(g0.begin(), g0.end()) <= 0.0;
+    ContactMode mode = ContactMode::open;
+    int sign = 0;
+    double normal_force = 0.0;
+    if (state != nullptr) {
+      mode = state->mode;
+      sign = state->slide_sign;
+      normal_force = carried != carried_.end() ? state->normal : 0.0;
+    } else if (lead.bonded || touching) {
+      mode = ContactMode::lock;
+    }
+    const bool same = carried != carried_.end();
+    auto anchor_of = [&](double u, const Point2& slave) {
+      // A lock carried on the same pair keeps its anchors (material points of the master);
+      // otherwise it anchors where the slave is now.
+      return same ? interpolate(state->anchors, u) : projection(c.master, slave);
+    };
+    if (g.edge) {
+      // Springs where the edges press on each other; all along an intact joint.
+      double from = g.lo;
+      double to = g.hi;
+      if (closed(mode) && !lead.bonded) {
+        if (const Part part = GapProfile(g.lo, g.hi, g0).negative(); part.found) {
+          from = part.from;
+          to = part.to;
+        }
+      }
+      place(g, from, to, anchor_of);
+    } else {
+      lead.anchor = anchor_of(0.0, lead.slave);
+    }
+    double total = 0.0;
+    for (int q = 0; q < g.count; ++q)
+      total += points_[at(g.first + q)].stiffness;
+    for (int q = 0; q < g.count; ++q) {
+      ContactPoint& point = points_[at(g.first + q)];
+      point.mode = mode;
+      point.slide_sign = sign;
+      point.flips = 0;
+      point.normal_force = total > 0.0 ? normal_force * point.stiffness / total : 0.0;
+      point.shear_force = 0.0;
+      point.gap = 0.0;
+    }
+    groups_.push_back(g);
+  }
+  counters_.points += static_cast<long>(points_.size());
+  last_changed_ = 0;
+}
+
+void ContactSystem::set_hold_shear(bool hold) {
+  hold_shear_ = hold;
+  if (!hold)
+    return;
+  for (ContactPoint& p : points_) {
+    if (p.mode == ContactMode::slide) {
+      p.mode = ContactMode::lock;
+      p.anchor = projection(p.master, p.slave);
+    }
+  }
+}
+
+ContactSystem::Kinematics
+ContactSystem::kinematics(const Model& model, const ContactPoint& p, bool alternative) const {
+  const int slave_edge = alternative ? p.alternative_slave_vertex : p.slave_edge;
+  const int master = alternative ? p.alternative_master : p.master;
+  const Point2 slave = alternative ? boundary_.position[at(slave_edge)] : p.slave;
+  const int slave_element = edge_element_[at(slave_edge)];
+  const int master_element = edge_element_[at(master)];
+  Kinematics k;
+  const ElementDofs slave_dofs = model.element_dofs(slave_element);
+  const ElementDofs master_dofs = model.element_dofs(master_element);
+  for (Eigen::Index i = 0; i < slave_dofs.size(); ++i)
+    k.dofs.push_back(slave_dofs(i));
+  for (Eigen::Index i = 0; i < master_dofs.size(); ++i) {
+    if (std::find(k.dofs.begin(), k.dofs.end(), master_dofs(i)) == k.dofs.end())
+      k.dofs.push_back(master_dofs(i));
+  }
+  const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
+  k.hn = Eigen::VectorXd::Zero(n);
+  k.hs = Eigen::VectorXd::Zero(n);
+  auto local = [&](int raw) {
+    return static_cast<Eigen::Index>(std::find(k.dofs.begin(), k.dofs.end(), raw) - k.dofs.begin());
+  };
+  // Adds T_element(x)^T c to h.
+  auto add = [&](Eigen::VectorXd& h, int element, const ElementDofs& dofs, const Point2& x,
+                 const Point2& c) {
+    const InterpolationMatrix t = model.shape(element).interpolation_at(x);
+    const ElementVector contribution = t.transpose() * c;
+    for (Eigen::Index i = 0; i < dofs.size(); ++i)
+      h(local(dofs(i))) += contribution(i);
+  };
+  const Point2& a = boundary_.position[at(master)];
+  const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
+  const double l = (b - a).norm();
+  const Point2 tangent = (b - a) / l;
+  // Normal gap (material on the left of a -> b; positive on the void side):
+  // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
+  // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
+  k.g0 = (slave - a).dot(perp(b - a)) / l;
+  add(k.hn, slave_element, slave_dofs, slave, perp(b - a) / l);
+  add(k.hn, master_element, master_dofs, a, perp(slave - b) / l);
+  add(k.hn, master_element, master_dofs, b, Point2(-perp(slave - a) / l));
+  // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
+  const Point2 anchor = a + p.anchor * (b - a);
+  k.s0 = (slave - anchor).dot(tangent);
+  add(k.hs, slave_element, slave_dofs, slave, tangent);
+  add(k.hs, master_element, master_dofs, anchor, Point2(-tangent));
+  return k;
+}
+
+double ContactSystem::gap_at(const Model& model,
+                             const Group& g,
+                             double u,
+                             const Eigen::VectorXd& raw) const {
+  ContactPoint p = points_[at(g.first)];
+  const Point2& a = boundary_.position[at(p.slave_edge)];
+  const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
+  p.slave = a + u * (d - a);
+  return kinematics(model, p, false).gap(raw);
+}
+
+std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
+  const ContactPoint& p = points_[at(i)];
+  std::vector<int> dofs = kinematics(model, p, false).dofs;
+  if (p.alternative_master >= 0) {
+    for (const int d : kinematics(model, p, true).dofs) {
+      if (std::find(dofs.begin(), dofs.end(), d) == dofs.end())
+        dofs.push_back(d);
+    }
+  }
+  return dofs;
+}
+
+void ContactSystem::contribution(const Model& model,
+                                 int i,
+                                 Eigen::MatrixXd& stiffness,
+                                 Eigen::VectorXd& load) const {
+  const ContactPoint& p = points_[at(i)];
+  const std::vector<int> dofs = point_dofs(model, i);
+  const Eigen::Index n = static_cast<Eigen::Index>(dofs.size());
+  stiffness = Eigen::MatrixXd::Zero(n, n);
+  load = Eigen::VectorXd::Zero(n);
+  if (p.mode == ContactMode::open)
+    return;
+  // Two convex angles: the spring sits on the entrance line passed first (smaller gap).
+  bool alternative = false;
+  if (p.alternative_master >= 0)
+    alternative = kinematics(model, p, true).g0 < kinematics(model, p, false).g0;
+  const Kinematics k = kinematics(model, p, alternative);
+  Eigen::VectorXd hn = Eigen::VectorXd::Zero(n);
+  Eigen::VectorXd hs = Eigen::VectorXd::Zero(n);
+  for (std::size_t j = 0; j < k.dofs.size(); ++j) {
+    const auto where =
+        static_cast<Eigen::Index>(std::find(dofs.begin(), dofs.end(), k.dofs[j]) - dofs.begin());
+    hn(where) = k.hn(static_cast<Eigen::Index>(j));
+    hs(where) = k.hs(static_cast<Eigen::Index>(j));
+  }
+  // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
+  stiffness += p.stiffness * hn * hn.transpose();
+  load -= p.stiffness * k.g0 * hn;
+  if (p.mode == ContactMode::lock) {
+    // Shear spring (eq. 3.25-3.26) anchored at P0.
+    stiffness += p.stiffness * hs * hs.transpose();
+    load -= p.stiffness * k.s0 * hs;
+  } else {
+    // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
+    // from the normal force of the last iteration so that the matrix stays symmetric.
+    const double friction = std::max(0.0, p.normal_force) * std::tan(p.strength.friction_angle);
+    load -= static_cast<double>(p.slide_sign) * friction * hs;
+  }
+}
+
+ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd& raw) {
+  ModeUpdate update;
+  // Friction consistency is judged on the whole system, by the work of friction in the step:
+  // the work of the change of the friction forces since they were applied against the work
+  // of all friction. A contact carrying a few newtons may change by a large fraction without
+  // any effect on the motion.
+  double friction_change = 0.0;
+  double friction_total = 0.0;
+  struct Measure {
+    double gap = 0.0;
+    double shear = 0.0;
+    double ds = 0.0;
+  };
+  std::vector<Measure> measure;
+  struct LiftOff {
+    int group = 0;
+    Part part;
+    bool just_closed = false;
+    double pulling = 0.0; ///< force of the springs on parts that no longer press (tension)
+    double pushing = 0.0; ///< force the springs would take on parts that now press
+  };
+  std::vector<LiftOff> lift_off;
+  double total_normal = 0.0;
+  for (Group& g : groups_) {
+    // Gap, shear and step motion of every point with the new step displacement.
+    measure.assign(at(g.count), Measure{});
+    for (int q = 0; q < g.count; ++q) {
+      ContactPoint& p = points_[at(g.first + q)];
+      bool alternative = false;
+      if (p.alternative_master >= 0)
+        alternative = kinematics(model, p, true).g0 < kinematics(model, p, false).g0;
+      const Kinematics k = kinematics(model, p, alternative);
+      const double ds = k.tangential(raw);
+      measure[at(q)] = {k.gap(raw), k.s0 + ds, ds};
+      p.gap = measure[at(q)].gap;
+    }
+    // Modes by Shi's table (8.2), decided per contact from its resultants: an angle contact
+    // is one point; the Gauss points of an edge-to-edge pair decide together, as one joint
+    // element would.
+    double stiffness = 0.0;
+    double normal = 0.0; // resultant, compressive positive
+    double shear = 0.0;  // resultant of the shear springs (lock)
+    double motion = 0.0; // stiffness-weighted tangential step motion
+    double gap = 0.0;    // stiffness-weighted gap
+    double cohesion = 0.0;
+    double tension = 0.0;
+    for (int q = 0; q < g.count; ++q) {
+      const ContactPoint& p = points_[at(g.first + q)];
+      stiffness += p.stiffness;
+      normal -= p.stiffness * measure[at(q)].gap;
+      shear += p.stiffness * measure[at(q)].shear;
+      motion += p.stiffness * measure[at(q)].ds;
+      gap += p.stiffness * measure[at(q)].gap;
+      if (p.bonded) {
+        cohesion += p.strength.cohesion * p.length;
+        tension += p.strength.tensile_strength * p.length;
+      }
+    }
+    ContactPoint& lead = points_[at(g.first)];
+    if (stiffness > 0.0) {
+      gap /= stiffness;
+      motion /= stiffness;
+    } else {
+      gap = measure[0].gap;
+      motion = measure[0].ds;
+    }
+    // Edge-to-edge: where the edges now press on each other (the gap is linear along the
+    // edge for order-0 covers, quadratic for order 1).
+    Part pressed;
+    double deepest = -gap;
+    double pulling = 0.0; // force of the springs on parts that no longer press
+    double pushing = 0.0; // force the springs would take on the parts that now press
+    if (g.edge) {
+      std::vector<double> samples{gap_at(model, g, g.lo, raw)};
+      if (gauss_ == 3)
+        samples.push_back(gap_at(model, g, 0.5 * (g.lo + g.hi), raw));
+      samples.push_back(gap_at(model, g, g.hi, raw));
+      const GapProfile profile(g.lo, g.hi, samples);
+      pressed = profile.negative();
+      deepest = -*std::min_element(samples.begin(), samples.end());
+      if (pressed.found) {
+        const double alpha =
+            options_.penalty / options_.spring_length * std::abs(g.t_next - g.t_first);
+        pulling = alpha * profile.outside(g.from, g.to, pressed.from, pressed.to);
+        pushing = alpha * profile.outside(pressed.from, pressed.to, g.from, g.to);
+      }
+    }
+    const double friction = std::tan(lead.strength.friction_angle);
+    const double limit = std::max(0.0, normal) * friction + cohesion;
+    const ContactMode before = lead.mode;
+    ContactMode after = before;
+    bool breaks = false;
+    int sign = lead.slide_sign;
+    const bool partial = g.edge && !lead.bonded; // springs only on the pressed part
+    if (before == ContactMode::open) {
+      if (partial ? pressed.found : gap < 0.0) {
+        // Shi 8.2: open -> slide when the shear the lock would take, the step's tangential
+        // motion against a spring of the same stiffness, beats friction on the normal force
+        // the penetration gives; open -> lock otherwise.
+        const double trial_shear = std::abs(motion) * stiffness;
+        const double trial_limit = std::max(0.0, deepest) * stiffness * friction + cohesion;
+        if (trial_shear > trial_limit && !hold_shear_) {
+          after = ContactMode::slide;
+          sign = motion > 0.0 ? 1 : -1;
+        } else {
+          after = ContactMode::lock;
+        }
+      }
+    } else if (partial ? !pressed.found : normal < -tension) {
+      after = ContactMode::open; // lifted off, or tension beyond the strength of a bond
+      breaks = lead.bonded;
+    } else if (before == ContactMode::lock) {
+      if (std::abs(shear) > limit && !hold_shear_) {
+        after = ContactMode::slide;
+        sign = shear > 0.0 ? 1 : -1;
+        breaks = lead.bonded;
+      }
+    } else if (motion * lead.slide_sign < 0.0) {
+      after = ContactMode::lock; // the sliding reversed against its friction: sticks
+    }
+    // Chatter rule (docs/formulation.md): a contact that has switched between open and
+    // closed chatter_limit times in the step lifts off whenever it is closed and penetrates
+    // whenever it is open: the force it can carry is nil. It stays open for the rest of the
+    // step (its small penetration is reported, and it is kept for the next step).
+    if (!closed(before) && closed(after) && lead.flips >= options_.chatter_limit) {
+      after = ContactMode::open;
+      ++counters_.chatter_holds;
+    }
+    const bool flip = closed(after) != closed(before);
+    for (int q = 0; q < g.count; ++q) {
+      ContactPoint& p = points_[at(g.first + q)];
+      const double length =
+          (boundary_.position[at(boundary_.next[at(p.master)])] - boundary_.position[at(p.master)])
+              .norm();
+      const Measure& m = measure[at(q)];
+      if (!closed(before) && closed(after)) {
+        // Locked at its entrance position (Shi eq. 3.4-3.6): where the gap crosses zero, a
+        // fraction t0 of the step's tangential motion along the edge.
+        const Kinematics k = kinematics(model, p, false);
+        const double t0 = k.g0 > 0.0 ? std::clamp(k.g0 / (k.g0 - m.gap), 0.0, 1.0) : 0.0;
+        p.anchor = std::clamp(projection(p.master, p.slave) + t0 * m.ds / length, 0.0, 1.0);
+      } else if (before == ContactMode::slide && after == ContactMode::lock) {
+        p.anchor = std::clamp(p.anchor + m.shear / length, 0.0, 1.0); // relocks here
+      }
+      p.mode = after;
+      p.slide_sign = sign;
+      if (breaks) {
+        p.bonded = false;
+        broken_[p.key] = true;
+      }
+      if (flip)
+        ++p.flips;
+    }
+    if (breaks)
+      ++counters_.bonds_broken;
+    if (partial && closed(after) && pressed.found)
+      lift_off.push_back(
+          {static_cast<int>(&g - groups_.data()), pressed, !closed(before), pulling, pushing});
+    // Friction from this solve's normal force, shared by stiffness. A contact that just
+    // closed has none yet: the penetration it reached while open, without its spring,
+    // overestimates it many times (friction from it can throw a block back up a slope).
+    const double used = [&] {
+      double sum = 0.0;
+      for (int q = 0; q < g.count; ++q)
+        sum += points_[at(g.first + q)].normal_force;
+      return sum;
+    }();
+    const double now = closed(after) && closed(before) ? normal : 0.0;
+    double placed = 0.0;
+    for (int q = 0; q < g.count; ++q)
+      placed += points_[at(g.first + q)].stiffness;
+    for (int q = 0; q < g.count; ++q) {
+      ContactPoint& p = points_[at(g.first + q)];
+      const double share = placed > 0.0 ? p.stiffness / placed : 0.0;
+      p.normal_force = now * share;
+      p.shear_force = after == ContactMode::lock    ? p.stiffness * measure[at(q)].shear
+                      : after == ContactMode::slide ? -sign * std::max(0.0, now) * friction * share
+                                                    : 0.0;
+    }
+    if (after == ContactMode::slide) {
+      const double work = friction * std::abs(motion);
+      friction_total += work * std::abs(now);
+      friction_change += work * std::abs(before == ContactMode::slide ? now - used : now);
+    }
+    if (closed(after))
+      total_normal += std::max(0.0, normal);
+    if (after != before) {
+      ++update.changes;
+      last_changed_ = g.first;
+    }
+  }
+  // The springs of edge-to-edge contacts move to the parts that press (a semi-smooth active
+  // set on each overlap), for a contact that just closed, and for the others when the force
+  // of the springs that come or go is not negligible against all contact force (near the
+  // lift-off point the gaps are at the level of the springs' own penetration; chasing them
+  // there would only cost iterations). The anchors of a lock follow the slave material
+  // points.
+  for (const LiftOff& l : lift_off) {
+    Group& g = groups_[at(l.group)];
+    double from = l.part.from;
+    double to = l.part.to;
+    if (!l.just_closed) {
+      const bool pulls = l.pulling > options_.tension_tolerance * total_normal;
+      const bool pushes = l.pushing > options_.lift_off_tolerance * total_normal;
+      // A lift-off point at nearly zero pressure can swing between two places for ever: at
+      // its first move back the contact settles, and from then on only gives up springs
+      // that pull (shrinking cannot cycle; what it leaves out penetrates at nearly zero
+      // pressure).
+      if (!g.settled && ((from - g.from) * g.moved_from < 0.0 || (to - g.to) * g.moved_to < 0.0))
+        g.settled = true;
+      if (g.settled) {
+        from = std::max(from, g.from);
+        to = std::min(to, g.to);
+        if (!pulls || to - from <= 1e-6 * (g.hi - g.lo))
+          continue;
+      } else if (!pulls && !pushes) {
+        continue;
+      }
+      g.moved_from = from - g.from;
+      g.moved_to = to - g.to;
+    }
+    std::vector<std::pair<double, double>> anchors;
+    double normal = 0.0;
+    for (int q = 0; q < g.count; ++q) {
+      const ContactPoint& p = points_[at(g.first + q)];
+      anchors.emplace_back(p.u, p.anchor);
+      normal += p.normal_force;
+    }
+    place(g, from, to, [&](double u, const Point2&) { return interpolate(anchors, u); });
+    double placed = 0.0;
+    for (int q = 0; q < g.count; ++q)
+      placed += points_[at(g.first + q)].stiffness;
+    for (int q = 0; q < g.count; ++q) {
+      ContactPoint& p = points_[at(g.first + q)];
+      p.normal_force = placed > 0.0 ? normal * p.stiffness / placed : 0.0;
+    }
+    if (!l.just_closed) { // (a contact that just closed is counted already)
+      ++update.changes;
+      last_changed_ = g.first;
+    }
+  }
+  update.friction_residual = friction_total > 0.0 ? friction_change / friction_total : 0.0;
+  return update;
+}
+
+void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
+  carried_.clear();
+  for (const Group& g : groups_) {
+    const ContactPoint& lead = points_[at(g.first)];
+    // Closed contacts carry their state; an open one that penetrates (held open by the
+    // chatter rule) is kept so that the next detection does not drop it.
+    const bool penetrating =
+        std::any_of(points_.begin() + g.first, points_.begin() + g.first + g.count,
+                    [](const ContactPoint& p) { return p.gap < 0.0; });
+    if (!closed(lead.mode) && !penetrating)
+      continue;
+    Carried state;
+    state.slave = lead.slave_edge;
+    state.master = lead.master;
+    state.mode = lead.mode;
+    state.slide_sign = lead.slide_sign;
+    for (int q = 0; q < g.count; ++q) {
+      const ContactPoint& p = points_[at(g.first + q)];
+      state.normal += p.normal_force;
+      double anchor = p.anchor;
+      if (p.mode == ContactMode::slide) {
+        // The next lock anchors where the slave point ends up on the edge.
+        const Kinematics k = kinematics(model, p, false);
+        const double l = (boundary_.position[at(boundary_.next[at(p.master)])] -
+                          boundary_.position[at(p.master)])
+                             .norm();
+        anchor = std::clamp(p.anchor + (k.s0 + k.tangential(raw)) / l, 0.0, 1.0);
+      }
+      state.anchors.emplace_back(p.u, anchor);
+    }
+    carried_[g.key] = std::move(state);
+  }
+}
+
+int ContactSystem::n_closed() const {
+  return static_cast<int>(std::count_if(points_.begin(), points_.end(),
+                                        [](const ContactPoint& p) { return closed(p.mode); }));
+}
+
+double ContactSystem::max_penetration() const {
+  double worst = 0.0;
+  for (const ContactPoint& p : points_) {
+    if (closed(p.mode))
+      worst = std::max(worst, -p.gap);
+  }
+  return worst;
+}
+
+std::string ContactSystem::describe(int i) const {
+  if (points_.empty())
+    return "no contact";
+  const ContactPoint& p = points_[at(std::clamp(i, 0, n_points() - 1))];
+  const Point2& a = boundary_.position[at(p.master)];
+  const Point2& b = boundary_.position[at(boundary_.next[at(p.master)])];
+  return "contact of " + point_text(p.slave) + " against the edge " + point_text(a) + "-" +
+         point_text(b);
+}
+
+} // namespace nmm

@@ -1,0 +1,229 @@
+// SPDX-License-Identifier: MIT
+// contact/contact_system.hpp — contact points, their springs and friction, the open-close
+// decisions and the transfer of closed contacts to the next step (Shi 1997, chapters 3.3-3.6,
+// 6.2-6.5 and 8.2; Mohr-Coulomb joints with cohesion and tensile strength).
+#pragma once
+
+#include "contact/detection.hpp"
+#include "manifold/model.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+#include <utility>
+#include <vector>
+
+namespace nmm {
+
+/// Mohr-Coulomb strength of a joint or a contact surface.
+struct JointStrength {
+  double friction_angle = 0.0;   ///< radians, in [0, pi/2)
+  double cohesion = 0.0;         ///< Pa
+  double tensile_strength = 0.0; ///< Pa
+};
+
+/// The three contact modes of Shi's open-close iteration (1997, 8.2).
+enum class ContactMode : std::uint8_t { open, slide, lock };
+
+/// Settings of the contact system.
+struct ContactOptions {
+  /// Normal and shear spring stiffness of an angle-to-edge contact (Shi's p), N/m.
+  double penalty = 0.0;
+  /// Length over which one point spring's stiffness is spread for edge-to-edge contacts:
+  /// they get penalty / spring_length per unit length, so an edge pair of that length is as
+  /// stiff as one of Shi's point springs, m. The cover size is the natural choice.
+  double spring_length = 1.0;
+  /// Contact detection criteria (the distance is set every step from the step displacement).
+  DetectionOptions detection;
+  /// A contact that has switched between open and closed this many times within a step
+  /// stays open for the rest of it: the chatter rule (docs/formulation.md).
+  int chatter_limit = 3;
+  /// Friction is a load computed from the normal forces of the last iteration (so that the
+  /// matrix stays symmetric); the iteration continues until the work of the friction change
+  /// since then is below this fraction of the work of all friction in the step: Coulomb's
+  /// law holds within the step, not one iteration late.
+  double friction_tolerance = 1e-5;
+  /// An edge-to-edge contact has springs only where the edges press on each other; the
+  /// iteration continues until the force the springs would take where the edges newly press
+  /// is below this fraction of all contact force ...
+  double lift_off_tolerance = 1e-4;
+  /// ... and the springs left where the edges no longer press pull with less than this
+  /// fraction (tension adds to the normal force elsewhere, and so to friction).
+  double tension_tolerance = 1e-6;
+};
+
+/// One contact point: an angle against its entrance line, or one Gauss point of an
+/// edge-to-edge pair, with its own state.
+struct ContactPoint {
+  std::uint64_t key = 0;         ///< identity of the contact (ContactCandidate::key) ...
+  int gauss = 0;                 ///< ... and of the point within it
+  int slave_edge = -1;           ///< the edge (element) the slave point moves with
+  Point2 slave = Point2::Zero(); ///< slave point at the start of the step
+  /// Edge-to-edge: position of the slave point on its edge (0 at its first vertex, 1 at the
+  /// next); the same material point from step to step.
+  double u = 0.0;
+  int master = -1; ///< master edge (entrance line)
+  /// Alternative configuration of a two-convex-angle contact (Shi 3.2 [1]), or -1.
+  int alternative_slave_vertex = -1;
+  int alternative_master = -1;
+  double length = 0.0;    ///< tributary length for strengths and integrated stiffness, m
+  double stiffness = 0.0; ///< normal and shear spring stiffness, N/m
+  JointStrength strength; ///< of the pair (the weaker of the two sides)
+  bool bonded = false;    ///< intact joint: holds tension and cohesion until it breaks
+  ContactMode mode = ContactMode::open;
+  /// Contact position on the master edge (parameter in [0, 1]) where the shear spring of a
+  /// locked contact is anchored (Shi 3.5, P0), carried to the next step.
+  double anchor = 0.0;
+  /// Sliding direction along the master edge (+1, -1).
+  int slide_sign = 0;
+  int flips = 0;             ///< open/closed switches in this step (chatter rule)
+  double normal_force = 0.0; ///< compressive positive, N
+  double shear_force = 0.0;  ///< along the master edge, N
+  double gap = 0.0;          ///< normal gap at the end of the last solve (negative: penetration)
+};
+
+/// What one open-close iteration found.
+struct ModeUpdate {
+  int changes = 0; ///< contacts whose mode or lift-off point changed (the matrix changes)
+  /// Work of the change of the friction forces since they were applied, over the work of
+  /// all friction in the step (0 when nothing slides).
+  double friction_residual = 0.0;
+};
+
+/// Counters for summary.json and benchmarks.
+struct ContactCounters {
+  long searches = 0;
+  long points = 0; ///< summed over steps
+  long chatter_holds = 0;
+  long bonds_broken = 0;
+  DetectionStats detection;
+};
+
+/// All contacts of the model during a step.
+class ContactSystem {
+public:
+  /// @param strength_of_edge  strength of every boundary edge's surface (its joint set's
+  ///                          or the [contact] default), indexed by loop then edge.
+  /// @param bonded_edge       whether an edge is a face of an intact joint
+  ContactSystem(ContactOptions options,
+                std::vector<std::vector<JointStrength>> strength_of_edge,
+                std::vector<std::vector<bool>> bonded_edge);
+
+  /// Whether the model can have any contact at all (two blocks, or a joint face): when not,
+  /// the stepper skips detection entirely.
+  [[nodiscard]] static bool can_touch(const Model& model);
+
+  /// Detects the contacts of the step (Shi's criteria, distance = 2 x max step displacement)
+  /// and carries the states of the contacts closed at the end of the last step.
+  void begin_step(const Model& model, double max_step_displacement);
+
+  [[nodiscard]] const std::vector<ContactPoint>& points() const noexcept { return points_; }
+  [[nodiscard]] int n_points() const noexcept { return static_cast<int>(points_.size()); }
+  /// Raw unknowns coupled by point i (slave and master elements, without repeats); the same
+  /// for the whole step.
+  [[nodiscard]] std::vector<int> point_dofs(const Model& model, int i) const;
+
+  /// Springs and friction loads of point i in its current mode, on point_dofs(i).
+  void
+  contribution(const Model& model, int i, Eigen::MatrixXd& stiffness, Eigen::VectorXd& load) const;
+
+  /// After a solve with step displacement @p raw: new modes by Shi's mode table, new lift-off
+  /// points and new friction loads.
+  ModeUpdate update_modes(const Model& model, const Eigen::VectorXd& raw);
+  /// Whether @p update ends the open-close iteration: no mode changed and friction agrees
+  /// with the normal forces. When only the friction residual is left, the matrix is the same
+  /// and the next solve can reuse its factor.
+  [[nodiscard]] bool converged(const ModeUpdate& update) const noexcept {
+    return update.changes == 0 && update.friction_residual <= options_.friction_tolerance;
+  }
+
+  /// While set, closed contacts lock and never slide (the initial equilibrium: the shear
+  /// springs take what friction could not); for the step begun last.
+  void set_hold_shear(bool hold);
+
+  /// Stores the closed contacts (and their anchors, forces, bonds) for the next step; to be
+  /// called with the step's final displacement, before the model moves.
+  void end_step(const Model& model, const Eigen::VectorXd& raw);
+
+  /// Closed contact points now.
+  [[nodiscard]] int n_closed() const;
+  /// Largest penetration of a closed contact after the last solve, m.
+  [[nodiscard]] double max_penetration() const;
+  [[nodiscard]] const ContactCounters& counters() const noexcept { return counters_; }
+  [[nodiscard]] const ContactOptions& options() const noexcept { return options_; }
+  /// A description of point i for messages ("vertex (x, y) against edge (x1, y1)-(x2, y2)").
+  [[nodiscard]] std::string describe(int i) const;
+  /// The point of the contact that changed last in the open-close iteration (for the message
+  /// of a step that does not converge), or 0.
+  [[nodiscard]] int last_changed() const noexcept { return last_changed_; }
+
+private:
+  struct Kinematics;
+  /// A contact: one angle point, or the Gauss points of one edge-to-edge pair, deciding
+  /// their mode together.
+  struct Group {
+    std::uint64_t key = 0;
+    bool edge = false;
+    int first = 0; ///< first point
+    int count = 0; ///< points
+    /// Edge-to-edge: the overlap with the master on the slave edge (parameters u), the part
+    /// of it with springs (where the edges press on each other), and the projections of the
+    /// slave edge's ends on the master from its first vertex.
+    double lo = 0.0;
+    double hi = 1.0;
+    double from = 0.0;
+    double to = 1.0;
+    double t_first = 0.0;
+    double t_next = 0.0;
+    /// Last move of the ends of the part with springs. A lift-off point at nearly zero
+    /// pressure can swing between two places for ever; at the first move back it settles on
+    /// the part pressed in both places for the rest of the step.
+    double moved_from = 0.0;
+    double moved_to = 0.0;
+    bool settled = false;
+  };
+  /// State of a closed contact carried to the next step.
+  struct Carried {
+    int slave = -1;
+    int master = -1;
+    ContactMode mode = ContactMode::open;
+    int slide_sign = 0;
+    double normal = 0.0; ///< resultant normal force
+    /// (u, anchor) of every point: the anchors of a locked pair as a function of the slave
+    /// material point.
+    std::vector<std::pair<double, double>> anchors;
+  };
+
+  [[nodiscard]] Kinematics
+  kinematics(const Model& model, const ContactPoint& p, bool alternative) const;
+  /// Normal gap at slave parameter u of edge group g after the step displacement raw.
+  [[nodiscard]] double
+  gap_at(const Model& model, const Group& g, double u, const Eigen::VectorXd& raw) const;
+  /// Places the Gauss points of edge group g on [from, to] (anchors from @p anchor_of(u)).
+  template <class AnchorOf> void place(Group& g, double from, double to, const AnchorOf& anchor_of);
+  /// Anchor parameter on the master of the projection of slave point @p x.
+  [[nodiscard]] double projection(int master, const Point2& x) const;
+
+  ContactOptions options_;
+  std::vector<std::vector<JointStrength>> strength_of_edge_;
+  std::vector<std::vector<bool>> bonded_edge_;
+  ContactBoundary boundary_;
+  std::vector<int> edge_element_;
+  std::vector<JointStrength> edge_strength_;
+  std::vector<char> edge_bonded_;
+  int gauss_ = 2;
+  std::vector<double> block_area_;
+  std::vector<Group> groups_;
+  std::vector<ContactPoint> points_;
+  /// Closed contacts of the last step, by key.
+  std::unordered_map<std::uint64_t, Carried> carried_;
+  /// Broken bonds, by contact key (a broken joint never heals).
+  std::unordered_map<std::uint64_t, bool> broken_;
+  int last_changed_ = 0;
+  bool hold_shear_ = false;
+  ContactCounters counters_;
+};
+
+} // namespace nmm

@@ -1,0 +1,382 @@
+// SPDX-License-Identifier: MIT
+#include "contact/detection.hpp"
+
+#include "mesh/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <unordered_set>
+#include <utility>
+
+namespace nmm {
+
+namespace {
+
+constexpr double two_pi = 2.0 * 3.14159265358979323846;
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+/// Angle of @p d measured counter-clockwise from @p from, in [0, 2 pi).
+double angle_from(const Point2& from, const Point2& d) {
+  double a = std::atan2(cross(from, d), from.dot(d));
+  if (a < 0.0)
+    a += two_pi;
+  return a;
+}
+
+/// A vertex's material wedge: directions from `start` counter-clockwise through `extent`.
+struct Wedge {
+  Point2 start;  ///< unit direction to the next vertex
+  Point2 finish; ///< unit direction to the previous vertex
+  double extent = 0.0;
+  [[nodiscard]] bool contains(const Point2& d) const { return angle_from(start, d) <= extent; }
+};
+
+Wedge wedge(const ContactBoundary& b, int v) {
+  Wedge w;
+  w.start = (b.position[at(b.next[at(v)])] - b.position[at(v)]).normalized();
+  w.finish = (b.position[at(b.previous[at(v)])] - b.position[at(v)]).normalized();
+  w.extent = b.angle(v);
+  return w;
+}
+
+/// Length of the intersection of two arcs of the unit circle, each given by its start angle
+/// and extent (both extents at most 2 pi).
+double arc_overlap(double s1, double e1, double s2, double e2) {
+  double total = 0.0;
+  for (int k = -1; k <= 1; ++k) {
+    const double lo = std::max(s1, s2 + k * two_pi);
+    const double hi = std::min(s1 + e1, s2 + k * two_pi + e2);
+    total += std::max(0.0, hi - lo);
+  }
+  return total;
+}
+
+double direction_angle(const Point2& d) {
+  double a = std::atan2(d.y(), d.x());
+  if (a < 0.0)
+    a += two_pi;
+  return a;
+}
+
+/// Shi's criterion [3]: translated onto the edge, the angle's wedge may dip into the edge's
+/// material half-plane (the side opposite its outward normal) by less than `limit`.
+bool fits_against(const Wedge& w, const Point2& normal, double limit) {
+  if (w.contains(-normal))
+    return false;
+  const double lowest = std::min(w.start.dot(normal), w.finish.dot(normal));
+  return lowest >= -std::sin(limit);
+}
+
+class Detector {
+public:
+  Detector(const ContactBoundary& boundary,
+           const DetectionOptions& options,
+           const std::vector<std::uint64_t>& keep)
+      : b_(boundary), options_(options), keep_(keep.begin(), keep.end()) {}
+
+  std::vector<ContactCandidate> run(DetectionStats* stats) {
+    const std::vector<std::pair<int, int>> pairs = broad_phase();
+    // Edge-to-edge first: they cover the angle contacts of their own vertices.
+    for (const auto& [e, f] : pairs)
+      test_edge_edge(e, f);
+    for (const auto& [e, f] : pairs) {
+      for (const int v : {e, b_.next[at(e)]})
+        test_vertex_edge(v, f);
+      for (const int v : {f, b_.next[at(f)]})
+        test_vertex_edge(v, e);
+      for (const int v : {e, b_.next[at(e)]}) {
+        for (const int w : {f, b_.next[at(f)]})
+          test_vertex_vertex(v, w);
+      }
+    }
+    if (stats != nullptr) {
+      stats->edge_pairs += static_cast<long>(pairs.size());
+      stats->vertex_edge += vertex_edge_;
+      stats->vertex_vertex += vertex_vertex_;
+      stats->edge_edge += edge_edge_;
+    }
+    return std::move(result_);
+  }
+
+private:
+  /// Sort and sweep on x of the edges' boxes grown by the contact distance.
+  std::vector<std::pair<int, int>> broad_phase() const {
+    const int n = b_.n_vertices();
+    std::vector<BoundingBox> boxes(at(n));
+    for (int e = 0; e < n; ++e) {
+      boxes[at(e)].extend(b_.position[at(e)]);
+      boxes[at(e)].extend(b_.position[at(b_.next[at(e)])]);
+      boxes[at(e)].min.array() -= options_.distance;
+      boxes[at(e)].max.array() += options_.distance;
+    }
+    std::vector<int> order(at(n));
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(),
+              [&](int a, int c) { return boxes[at(a)].min.x() < boxes[at(c)].min.x(); });
+    std::vector<std::pair<int, int>> pairs;
+    std::vector<int> active;
+    for (const int e : order) {
+      const BoundingBox& box = boxes[at(e)];
+      std::erase_if(active, [&](int a) { return boxes[at(a)].max.x() < box.min.x(); });
+      for (const int a : active) {
+        const BoundingBox& other = boxes[at(a)];
+        if (other.max.y() < box.min.y() || other.min.y() > box.max.y() || b_.adjacent(a, e))
+          continue;
+        pairs.emplace_back(std::min(a, e), std::max(a, e));
+      }
+      active.push_back(e);
+    }
+    return pairs;
+  }
+
+  bool kept(const ContactCandidate& c) const { return keep_.count(c.key()) != 0; }
+
+  /// A vertex on a straight boundary (a point where the boundary crosses a math edge, or a
+  /// vertex of a gently curved outline): part of its edges, not an angle. Its contacts are
+  /// its edges' edge-to-edge contacts, or the corners of what touches it.
+  bool flat(int v) const {
+    return std::abs(b_.angle(v) - 3.14159265358979323846) < options_.angle_overlap;
+  }
+
+  void add(const ContactCandidate& c) {
+    if (seen_.insert(c.key()).second)
+      result_.push_back(c);
+  }
+
+  /// Two facing parallel edges (antiparallel within the angle criterion) whose projections
+  /// overlap and whose gap can close in the step.
+  void test_edge_edge(int e, int f) {
+    const Point2 de = b_.direction(e);
+    const Point2 df = b_.direction(f);
+    if (de.dot(df) > -std::cos(options_.angle_overlap))
+      return;
+    // Slave e against master f: the overlap of e's projection on f.
+    const Point2& c = b_.position[at(f)];
+    const double length = (b_.position[at(b_.next[at(f)])] - c).norm();
+    const Point2& a = b_.position[at(e)];
+    const Point2& d = b_.position[at(b_.next[at(e)])];
+    const double ta = (a - c).dot(df);
+    const double td = (d - c).dot(df);
+    const double lo = std::max(0.0, std::min(ta, td));
+    const double hi = std::min(length, std::max(ta, td));
+    if (hi - lo <= 1e-6 * length) // a touching end: the neighbouring pairs hold it
+      return;
+    const Point2 n = b_.outward_normal(f);
+    const double ga = n.dot(a - c);
+    const double gd = n.dot(d - c);
+    // Gap at the ends of the overlap (linear in between).
+    const double gap_lo = ga + (gd - ga) * ((lo - ta) / (td - ta));
+    const double gap_hi = ga + (gd - ga) * ((hi - ta) / (td - ta));
+    const double low = std::min(gap_lo, gap_hi);
+    // The master is the edge of the larger block: it moves and turns less, and the gap is
+    // linearised in the master's motion (exact for a master that stays put).
+    ContactCandidate candidate;
+    candidate.kind = ContactKind::edge_edge;
+    candidate.slave = std::min(e, f);
+    candidate.master = std::max(e, f);
+    if (!b_.block_area.empty()) {
+      const double area_e = b_.block_area[at(b_.block[at(e)])];
+      const double area_f = b_.block_area[at(b_.block[at(f)])];
+      if (std::abs(area_e - area_f) > 1e-9 * std::max(area_e, area_f)) {
+        candidate.slave = area_e < area_f ? e : f;
+        candidate.master = area_e < area_f ? f : e;
+      }
+    }
+    if (std::max(gap_lo, gap_hi) > options_.distance && low > options_.distance)
+      return;
+    if (low < -options_.penetration && !kept(candidate))
+      return;
+    if (edge_pairs_.insert({std::min(e, f), std::max(e, f)}).second) {
+      ++edge_edge_;
+      add(candidate);
+    }
+  }
+
+  /// Whether vertex v's contact against edge m is part of an edge-to-edge contact.
+  bool covered(int v, int m) const {
+    for (const int s : {v, b_.previous[at(v)]}) {
+      if (edge_pairs_.count({std::min(s, m), std::max(s, m)}) != 0)
+        return true;
+    }
+    return false;
+  }
+
+  bool covered_pair(int v, int w) const {
+    for (const int s : {v, b_.previous[at(v)]}) {
+      for (const int f : {w, b_.previous[at(w)]}) {
+        if (edge_pairs_.count({std::min(s, f), std::max(s, f)}) != 0)
+          return true;
+      }
+    }
+    return false;
+  }
+
+  /// Angle-to-edge (Shi 3.1 [1] and [3]): the vertex projects inside the edge, is close to
+  /// it on its void side, and its wedge fits against the edge.
+  void test_vertex_edge(int v, int m) {
+    if (v == m || v == b_.next[at(m)] || flat(v) || covered(v, m))
+      return;
+    const Point2& p = b_.position[at(v)];
+    const Point2& c = b_.position[at(m)];
+    const Point2 edge = b_.position[at(b_.next[at(m)])] - c;
+    const double t = (p - c).dot(edge) / edge.squaredNorm();
+    if (t <= 0.0 || t >= 1.0) // the ends are angle-to-angle contacts
+      return;
+    const Point2 n = b_.outward_normal(m);
+    const double gap = n.dot(p - c);
+    if (std::abs(gap) > options_.distance)
+      return;
+    ContactCandidate candidate;
+    candidate.slave = v;
+    candidate.master = m;
+    if (gap < -options_.penetration && !kept(candidate))
+      return;
+    if (!fits_against(wedge(b_, v), n, options_.angle_overlap))
+      return;
+    ++vertex_edge_;
+    add(candidate);
+  }
+
+  /// Angle-to-angle (Shi 3.1 [2] and [4], entrance lines 3.2): reduced to angle-to-edge
+  /// contacts against the entrance lines.
+  void test_vertex_vertex(int v, int w) {
+    if (v == w || b_.next[at(v)] == w || b_.next[at(w)] == v)
+      return;
+    const Point2& p = b_.position[at(v)];
+    const Point2& q = b_.position[at(w)];
+    if ((p - q).norm() > options_.distance || covered_pair(v, w))
+      return;
+    const std::pair<int, int> key{std::min(v, w), std::max(v, w)};
+    if (!vertex_pairs_.insert(key).second)
+      return;
+    if (flat(v) && flat(w))
+      return; // straight against straight: edge-to-edge contacts, if facing
+    if (flat(v) || flat(w)) {
+      // A corner against a straight point: the corner against the straight side's edge it
+      // projects onto (the more central one if it sits right at the point).
+      const int corner = flat(v) ? w : v;
+      const int straight = flat(v) ? v : w;
+      int best = -1;
+      double best_centrality = -1.0;
+      for (const int e : {straight, b_.previous[at(straight)]}) {
+        const Point2& c0 = b_.position[at(e)];
+        const Point2 edge = b_.position[at(b_.next[at(e)])] - c0;
+        const double t = (b_.position[at(corner)] - c0).dot(edge) / edge.squaredNorm();
+        if (t < 0.0 || t > 1.0)
+          continue;
+        if (std::min(t, 1.0 - t) > best_centrality) {
+          best_centrality = std::min(t, 1.0 - t);
+          best = e;
+        }
+      }
+      if (best < 0 || covered(corner, best))
+        return;
+      const Point2 n = b_.outward_normal(best);
+      const double gap = n.dot(b_.position[at(corner)] - b_.position[at(best)]);
+      ContactCandidate candidate;
+      candidate.slave = corner;
+      candidate.master = best;
+      if (gap > options_.distance || (gap < -options_.penetration && !kept(candidate)))
+        return;
+      if (!fits_against(wedge(b_, corner), n, options_.angle_overlap))
+        return;
+      ++vertex_edge_;
+      add(candidate);
+      return;
+    }
+    const Wedge a = wedge(b_, v);
+    const Wedge c = wedge(b_, w);
+    const double sa = direction_angle(a.start);
+    const double sc = direction_angle(c.start);
+    if (arc_overlap(sa, a.extent, sc, c.extent) >= options_.angle_overlap)
+      return;
+    ++vertex_vertex_;
+    const double straight = 3.14159265358979323846 + 1e-12;
+    auto against = [&](int vertex, int edge) {
+      ContactCandidate candidate;
+      candidate.slave = vertex;
+      candidate.master = edge;
+      return candidate;
+    };
+    if (c.extent > straight && a.extent <= straight) {
+      // The reflex angle's two edges are the entrance lines (3.2 [2]).
+      add(against(v, w));
+      add(against(v, b_.previous[at(w)]));
+      return;
+    }
+    if (a.extent > straight && c.extent <= straight) {
+      add(against(w, v));
+      add(against(w, b_.previous[at(v)]));
+      return;
+    }
+    if (a.extent > straight && c.extent > straight)
+      return; // two reflex angles cannot touch without overlapping
+    // Two convex angles (3.2 [1]): the entrance lines bound the narrower of the two gaps
+    // between the translated wedges; one spring, on the line passed first.
+    const double gap_after_a = std::fmod(sc - (sa + a.extent) + 2.0 * two_pi, two_pi);
+    const double gap_after_c = std::fmod(sa - (sc + c.extent) + 2.0 * two_pi, two_pi);
+    ContactCandidate candidate;
+    if (gap_after_a <= gap_after_c) {
+      // a's finishing ray (edge previous[v]) faces c's starting ray (edge w).
+      candidate = against(v, w);
+      candidate.alternative_slave = w;
+      candidate.alternative_master = b_.previous[at(v)];
+    } else {
+      candidate = against(v, b_.previous[at(w)]);
+      candidate.alternative_slave = w;
+      candidate.alternative_master = v;
+    }
+    add(candidate);
+  }
+
+  const ContactBoundary& b_;
+  const DetectionOptions& options_;
+  std::unordered_set<std::uint64_t> keep_;
+  std::unordered_set<std::uint64_t> seen_;
+  std::set<std::pair<int, int>> edge_pairs_;
+  std::set<std::pair<int, int>> vertex_pairs_;
+  std::vector<ContactCandidate> result_;
+  long vertex_edge_ = 0;
+  long vertex_vertex_ = 0;
+  long edge_edge_ = 0;
+};
+
+} // namespace
+
+double ContactBoundary::angle(int v) const {
+  const Point2 out = position[at(next[at(v)])] - position[at(v)];
+  const Point2 in = position[at(previous[at(v)])] - position[at(v)];
+  double a = std::atan2(cross(out, in), out.dot(in));
+  if (a <= 0.0)
+    a += two_pi;
+  return a;
+}
+
+Point2 ContactBoundary::direction(int e) const {
+  return (position[at(next[at(e)])] - position[at(e)]).normalized();
+}
+
+Point2 ContactBoundary::outward_normal(int e) const {
+  const Point2 d = direction(e);
+  return {d.y(), -d.x()};
+}
+
+bool ContactBoundary::adjacent(int e, int f) const {
+  return e == f || next[at(e)] == f || next[at(f)] == e;
+}
+
+std::vector<ContactCandidate> detect_contacts(const ContactBoundary& boundary,
+                                              const DetectionOptions& options,
+                                              const std::vector<std::uint64_t>& keep,
+                                              DetectionStats* stats) {
+  NMM_ASSERT(options.distance >= 0.0 && options.penetration >= 0.0, "negative contact distance");
+  Detector detector(boundary, options, keep);
+  return detector.run(stats);
+}
+
+} // namespace nmm

@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+#include "contact/detection.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace nmm {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+/// Builds a boundary from loops given counter-clockwise (material on the left).
+ContactBoundary boundary_of(const std::vector<std::vector<Point2>>& loops) {
+  ContactBoundary b;
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const int base = b.n_vertices();
+    const int n = static_cast<int>(loops[l].size());
+    for (int k = 0; k < n; ++k) {
+      b.position.push_back(loops[l][static_cast<std::size_t>(k)]);
+      b.next.push_back(base + (k + 1) % n);
+      b.previous.push_back(base + (k + n - 1) % n);
+      b.loop.push_back(static_cast<int>(l));
+      b.block.push_back(static_cast<int>(l));
+    }
+  }
+  return b;
+}
+
+std::vector<Point2> square(double x0, double y0, double side) {
+  return {{x0, y0}, {x0 + side, y0}, {x0 + side, y0 + side}, {x0, y0 + side}};
+}
+
+DetectionOptions options(double distance) {
+  DetectionOptions o;
+  o.distance = distance;
+  o.penetration = 0.1 * distance;
+  return o;
+}
+
+int count(const std::vector<ContactCandidate>& c, ContactKind kind) {
+  int n = 0;
+  for (const ContactCandidate& x : c)
+    n += x.kind == kind;
+  return n;
+}
+
+TEST(ContactBoundary, AnglesOfCornersStraightPointsAndCrackTips) {
+  // A square, a straight point on its edge, and a slit (crack) ending at (0.5, 0.5).
+  const ContactBoundary b = boundary_of(
+      {{{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0.2, 0.5}, {0.5, 0.5}, {0.2, 0.5}}});
+  EXPECT_NEAR(b.angle(0), pi / 2.0, 1e-14);  // convex corner
+  EXPECT_NEAR(b.angle(1), pi, 1e-14);        // straight
+  EXPECT_NEAR(b.angle(6), 2.0 * pi, 1e-14);  // crack tip: the slit turns back
+  EXPECT_NEAR(b.outward_normal(0).y(), -1.0, 1e-14);
+  EXPECT_TRUE(b.adjacent(0, 1));
+  EXPECT_FALSE(b.adjacent(0, 2));
+}
+
+TEST(ContactDetection, FacingEdgesWithinTwiceTheStepDisplacementMakeAnEdgeContact) {
+  // Two unit squares, one above the other with a 0.01 gap.
+  const ContactBoundary b = boundary_of({square(0, 0, 1), square(0.3, 1.01, 1)});
+  const auto near = detect_contacts(b, options(0.02), {});
+  EXPECT_EQ(count(near, ContactKind::edge_edge), 1);
+  EXPECT_EQ(count(near, ContactKind::vertex_edge), 0); // covered by the edge contact
+  const auto far = detect_contacts(b, options(0.005), {});
+  EXPECT_TRUE(far.empty());
+}
+
+TEST(ContactDetection, CornerAgainstAnEdgeIsAnAngleToEdgeContact) {
+  // A square standing on its corner 0.005 above a base.
+  const double h = std::sqrt(0.5);
+  const ContactBoundary b =
+      boundary_of({square(-2, -1, 4), {{0, 3.005}, {h, 3.005 + h}, {0, 3.005 + 2 * h}, {-h, 3.005 + h}}});
+    // (the base's top edge runs from (2, 3) to (-2, 3))
+  const auto contacts = detect_contacts(b, options(0.02), {});
+  ASSERT_EQ(contacts.size(), 1U);
+  EXPECT_EQ(contacts[0].kind, ContactKind::vertex_edge);
+  EXPECT_EQ(contacts[0].slave, 4); // the lowest corner of the tilted square
+  EXPECT_EQ(contacts[0].master, 2); // the base's top edge (from (2, 3) to (-2, 3))
+}
+
+TEST(ContactDetection, AngleCriterionRejectsAWedgeThatWouldHaveToRotate) {
+  // A corner whose wedge dips 10 degrees below the edge's line cannot touch it without a
+  // rotation larger than Shi's 2 x 1.5 degrees.
+  const double a = 10.0 * pi / 180.0;
+  const ContactBoundary b = boundary_of(
+      {square(-2, -1, 4), {{0, 3.001}, {std::cos(-a), 3.001 + std::sin(-a)}, {0.2, 3.5}}});
+  const auto contacts = detect_contacts(b, options(0.02), {});
+  for (const ContactCandidate& c : contacts)
+    EXPECT_NE(c.slave, 4);
+}
+
+TEST(ContactDetection, TwoConvexCornersTouchThroughOneEntranceLineWithAnAlternative) {
+  // Two squares corner to corner along their diagonal: an angle-to-angle contact of two
+  // convex angles, reduced to one angle-to-edge contact and its alternative (Shi 3.2 [1]).
+  const ContactBoundary b = boundary_of({square(0, 0, 1), square(1.003, 1.004, 1)});
+  const auto contacts = detect_contacts(b, options(0.02), {});
+  ASSERT_EQ(contacts.size(), 1U);
+  EXPECT_EQ(contacts[0].kind, ContactKind::vertex_edge);
+  EXPECT_GE(contacts[0].alternative_master, 0);
+}
+
+TEST(ContactDetection, ConvexCornerIntoAReflexCornerHasTwoEntranceLines) {
+  // An L-shaped base with a reflex corner at (1, 1), and a square's corner sitting in it.
+  const ContactBoundary b = boundary_of(
+      {{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, square(1.004, 1.003, 0.5)});
+  const auto contacts = detect_contacts(b, options(0.02), {});
+  int against_reflex = 0;
+  for (const ContactCandidate& c : contacts)
+    against_reflex += c.kind == ContactKind::vertex_edge && c.slave == 6 && (c.master == 2 || c.master == 3);
+  // The square's sides also face the L's sides: those are edge contacts; the corner's own
+  // contact goes to both edges of the reflex angle unless the edge contacts cover it.
+  EXPECT_EQ(count(contacts, ContactKind::edge_edge) + against_reflex, 2);
+}
+
+TEST(ContactDetection, AThinBlockDoesNotTouchItselfAcrossItsThickness) {
+  // A 0.001-thick plate: its top face is within the contact distance of its bottom face,
+  // but on the material side of it (penetration 0.001 > the 0.0002 a new contact may have).
+  const ContactBoundary b = boundary_of({{{0, 0}, {1, 0}, {1, 0.001}, {0, 0.001}}});
+  EXPECT_TRUE(detect_contacts(b, options(0.002), {}).empty());
+}
+
+TEST(ContactDetection, TheTwoFacesOfACrackAreInContact) {
+  // A slit loop (a crack inside a body, its faces split in three): out along the crack and
+  // back. The faces' middle pieces touch; the pieces at each tip share the tip vertex (in
+  // NMM they lie in the tip's element, one displacement field, so they cannot interpenetrate).
+  const ContactBoundary b = boundary_of({{{0, -2}, {3, -2}, {3, 2}, {0, 2}},
+                                         {{1, 0}, {1.4, 0}, {1.7, 0}, {2, 0}, {1.7, 0}, {1.4, 0}}});
+  const auto contacts = detect_contacts(b, options(0.02), {});
+  ASSERT_EQ(count(contacts, ContactKind::edge_edge), 1);
+  EXPECT_EQ(contacts[0].slave, 5);  // (1.4, 0) -> (1.7, 0)
+  EXPECT_EQ(contacts[0].master, 8); // (1.7, 0) -> (1.4, 0)
+}
+
+TEST(ContactDetection, ClosedContactsAreKeptWhatEverTheirPenetration) {
+  // Squares overlapping by 0.005: a new contact would be refused (0.005 > 0.1 x 0.02), but a
+  // contact closed in the last step carries over.
+  const ContactBoundary b = boundary_of({square(0, 0, 1), square(0.3, 0.995, 1)});
+  EXPECT_TRUE(detect_contacts(b, options(0.02), {}).empty());
+  ContactCandidate closed;
+  closed.kind = ContactKind::edge_edge;
+  closed.slave = 2;
+  closed.master = 4;
+  EXPECT_EQ(detect_contacts(b, options(0.02), {closed.key()}).size(), 1U);
+}
+
+TEST(ContactDetection, BroadPhaseFindsEveryPairOfAManyBlockRow) {
+  // 200 squares in a row with 0.01 gaps: 199 edge contacts, found by the sweep.
+  std::vector<std::vector<Point2>> loops;
+  for (int i = 0; i < 200; ++i)
+    loops.push_back(square(1.01 * i, 0, 1));
+  DetectionStats stats;
+  const auto contacts = detect_contacts(boundary_of(loops), options(0.02), {}, &stats);
+  EXPECT_EQ(count(contacts, ContactKind::edge_edge), 199);
+  EXPECT_LT(stats.edge_pairs, 200 * 8); // neighbours only, not all pairs
+}
+
+} // namespace
+} // namespace nmm

@@ -1,0 +1,411 @@
+// SPDX-License-Identifier: MIT
+// Verification of contact against closed forms (issue 5): the Goodman joint element, a block
+// sliding on an incline, the stick case, a stack at rest, a dropped block, and the identity of
+// the penetration in the equations and in the moved geometry.
+#include "verification_support.hpp"
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+namespace nmm {
+namespace {
+
+using testing::elastic;
+using testing::line;
+
+constexpr double pi = 3.14159265358979323846;
+
+/// A contact system with one strength for every boundary edge; joint faces are bonded when
+/// @p bonded (an intact joint holds until its strength is exceeded).
+std::unique_ptr<ContactSystem> contact_for(const Model& model,
+                                           double penalty,
+                                           const JointStrength& strength,
+                                           bool bonded = false) {
+  std::vector<std::vector<JointStrength>> strengths;
+  std::vector<std::vector<bool>> bonds;
+  for (const BoundaryLoop& loop : model.loops) {
+    strengths.emplace_back(loop.edges.size(), strength);
+    std::vector<bool> b;
+    for (const BoundaryEdge& e : loop.edges)
+      b.push_back(bonded && e.joint >= 0);
+    bonds.push_back(std::move(b));
+  }
+  ContactOptions options;
+  options.penalty = penalty;
+  options.spring_length = model.scale;
+  return std::make_unique<ContactSystem>(options, std::move(strengths), std::move(bonds));
+}
+
+TEST(Goodman, EdgeToEdgeContactIsTheGoodmanJointElement) {
+  // Two unit squares joined by an intact (locked) joint along y = 1, on a conforming math
+  // mesh so that each face's displacement is the linear interpolation of its two end covers:
+  // the integrated springs of the edge contact must be Goodman's joint element
+  // K = l/6 [2 1 -1 -2; 1 2 -2 -1; -1 -2 2 1; -2 -1 1 2] per component (Riahi et al.,
+  // eq. 21 and 43), with k = penalty / spring length per unit length. Tolerance 1e-12: the
+  // same integral, exact in both (two Gauss points for a quadratic integrand).
+  MathMesh math;
+  math.nodes = {{0, 0}, {1, 0}, {0, 1}, {1, 1}, {0, 2}, {1, 2}};
+  math.triangles = {{0, 1, 3}, {0, 3, 2}, {2, 3, 5}, {2, 5, 4}};
+  testing::Setup s = testing::make_setup(
+      {testing::rectangle("lower", 0, 0, 1, 1), testing::rectangle("upper", 0, 1, 1, 2)},
+      {line("joint", {0, 1}, {1, 1})}, {0}, &math, 0.0,
+      elastic(1e9, 0.25, 2000, PlaneCondition::strain), 0);
+  ASSERT_EQ(s.model.blocks.size(), 2U);
+  const double penalty = 4.0e10;
+  auto contact = contact_for(s.model, penalty, {0.5, 1.0e6, 1.0e6}, true);
+  contact->begin_step(s.model, 0.01);
+  ASSERT_EQ(contact->n_points(), 2); // two Gauss points of one edge-to-edge contact
+  // Goodman's nodes: 1 = lower (0,1), 2 = lower (1,1), 3 = upper (1,1), 4 = upper (0,1).
+  auto cover_at = [&](double x, double y, double block_y) {
+    for (int c = 0; c < s.model.n_covers(); ++c) {
+      const ModelCover& cover = s.model.covers[static_cast<std::size_t>(c)];
+      if ((cover.position - Point2(x, y)).norm() < 1e-12) {
+        // The block of this cover: lower or upper by an element's centroid.
+        for (const ModelElement& e : s.model.elements) {
+          if (std::find(e.covers.begin(), e.covers.end(), c) != e.covers.end() &&
+              (e.stress.origin.y() < 1.0) == (block_y < 1.0))
+            return c;
+        }
+      }
+    }
+    ADD_FAILURE() << "no cover at " << x << ", " << y;
+    return 0;
+  };
+  const std::array<int, 4> node{cover_at(0, 1, 0.5), cover_at(1, 1, 0.5), cover_at(1, 1, 1.5),
+                                cover_at(0, 1, 1.5)};
+  std::map<int, int> goodman_dof;
+  for (int n = 0; n < 4; ++n) {
+    goodman_dof[s.model.dof(node[static_cast<std::size_t>(n)], 0)] = 2 * n;     // u (tangential)
+    goodman_dof[s.model.dof(node[static_cast<std::size_t>(n)], 1)] = 2 * n + 1; // v (normal)
+  }
+  Eigen::Matrix<double, 8, 8> k = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int i = 0; i < contact->n_points(); ++i) {
+    Eigen::MatrixXd spring;
+    Eigen::VectorXd load;
+    contact->contribution(s.model, i, spring, load);
+    const std::vector<int> dofs = contact->point_dofs(s.model, i);
+    for (std::size_t a = 0; a < dofs.size(); ++a) {
+      for (std::size_t b = 0; b < dofs.size(); ++b) {
+        const double value = spring(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+        const auto ia = goodman_dof.find(dofs[a]);
+        const auto ib = goodman_dof.find(dofs[b]);
+        if (ia == goodman_dof.end() || ib == goodman_dof.end()) {
+          EXPECT_EQ(value, 0.0) << "a cover off the joint takes part";
+          continue;
+        }
+        k(ia->second, ib->second) += value;
+      }
+    }
+  }
+  const double alpha = penalty / s.model.scale; // k_n = k_s per unit length
+  const double l = 1.0;
+  Eigen::Matrix4d pattern;
+  pattern << 2, 1, -1, -2, 1, 2, -2, -1, -1, -2, 2, 1, -2, -1, 1, 2;
+  Eigen::Matrix<double, 8, 8> goodman = Eigen::Matrix<double, 8, 8>::Zero();
+  for (int a = 0; a < 4; ++a) {
+    for (int b = 0; b < 4; ++b) {
+      goodman(2 * a, 2 * b) = l / 6.0 * alpha * pattern(a, b);         // k_s
+      goodman(2 * a + 1, 2 * b + 1) = l / 6.0 * alpha * pattern(a, b); // k_n
+    }
+  }
+  EXPECT_LT((k - goodman).norm(), 1e-12 * goodman.norm()) << "ours:\n"
+                                                          << k << "\nGoodman:\n"
+                                                          << goodman;
+}
+
+/// A 1.0 m x 0.5 m block on a 45 degree ramp (a band 0.5 m thick, 8.5 m along the slope,
+/// its base held), 6.4 m up the slope so that it stays on the ramp for 1 s even at
+/// phi = 15 deg; the block's bottom face is a joint of friction angle phi. It starts at rest
+/// in the initial equilibrium (TimeStepper::equilibrate): the analytic solution assumes the
+/// full normal force from t = 0, while a block put down on unloaded springs drops into them
+/// in the first steps and slides faster meanwhile (by about 0.2% at phi = 40 deg and
+/// dt = 1e-3 s, the start error the VEM-DDA paper reports). Distances are measured from the
+/// settled position.
+struct Incline {
+  double phi_degrees = 30.0;
+  double dt = 1e-3;
+  double penalty_factor = 40.0;
+  double young = 1.0e10;
+
+  struct Result {
+    double distance = 0.0; ///< slid along the slope after 1 s
+    double exact = 0.0;
+    double max_penetration = 0.0;
+    double largest_motion = 0.0; ///< largest distance of the block's centre from its start
+    int steps = 0;
+    long cuts = 0;
+  };
+
+  Result run(double duration = 1.0) const {
+    const Point2 along(1.0 / std::sqrt(2.0), 1.0 / std::sqrt(2.0)); // up the slope
+    const Point2 up(-1.0 / std::sqrt(2.0), 1.0 / std::sqrt(2.0));   // out of it
+    const Point2 a(4.5, 4.5);
+    MaterialRegion block{"block", {{{a, a + along, a + along + 0.5 * up, a + 0.5 * up}, {}}}};
+    const Point2 down = -0.5 * up; // the band's thickness
+    MaterialRegion ramp{"ramp", {{{{0, 0}, down, Point2(6, 6) + down, {6, 6}}, {}}}};
+    const ElasticMaterial rock = elastic(young, 0.25, 2500.0, PlaneCondition::strain);
+    testing::Setup s = testing::make_setup(
+        {ramp, block}, {line("slip", a, a + along), line("base", down, Point2(6, 6) + down)}, {0},
+        nullptr, 0.125, rock, 0);
+    Scene scene;
+    scene.supports = curve_support_points(s.model, 1, true, true, SupportMethod::exact, "base");
+    scene.body_loads.push_back({{0.0, -9.81}, {}});
+    const Point2 centre = a + 0.5 * along + 0.25 * up;
+    scene.monitors.push_back({s.model.find_element(centre, 1e-9), centre});
+    StepperOptions options;
+    options.time_step = dt;
+    const double phi = phi_degrees * pi / 180.0;
+    TimeStepper stepper(s.model, scene, options,
+                        contact_for(s.model, penalty_factor * young, {phi, 0.0, 0.0}));
+    stepper.equilibrate();
+    const Point2 start = stepper.scene().monitors[0].position;
+    Result r;
+    while (stepper.time() < duration - 1e-9) {
+      const StepReport report = stepper.step(duration);
+      r.max_penetration = std::max(r.max_penetration, stepper.contact_penetration());
+      r.largest_motion =
+          std::max(r.largest_motion, (stepper.scene().monitors[0].position - start).norm());
+      r.steps = static_cast<int>(report.step);
+      r.cuts += report.step_cuts;
+    }
+    r.distance = -(stepper.scene().monitors[0].position - start).dot(along);
+    const double g = 9.81;
+    r.exact = std::max(0.0, 0.5 * g * duration * duration *
+                                (std::sin(pi / 4) - std::tan(phi) * std::cos(pi / 4)));
+    return r;
+  }
+};
+
+TEST(Incline, BlockSlidesTheExactDistanceForEveryFrictionAngleAndTimeStep) {
+  // s = g t² (sin a - tan phi cos a) / 2 at t = 1 s on a 45 degree slope. Issue 5: relative
+  // error below 0.1% for phi = 15, 30, 40 degrees and time steps from 1e-3 to 1e-2 s (the
+  // VEM-DDA paper reports 0.06%, 0.2% and 2.0%). Measured (2026-11-22): at most 0.015%
+  // (phi = 40, dt = 1e-3); the rest below 0.001%.
+  for (const double phi : {15.0, 30.0, 40.0}) {
+    for (const double dt : {1e-2, 1e-3}) {
+      Incline incline;
+      incline.phi_degrees = phi;
+      incline.dt = dt;
+      const Incline::Result r = incline.run();
+      const double error = std::abs(r.distance - r.exact) / r.exact;
+      std::printf("incline phi %4.1f dt %.0e: slid %.6f m, exact %.6f m, error %.4f%%, max "
+                  "penetration %.2e m, %d steps, %ld cuts\n",
+                  phi, dt, r.distance, r.exact, 100.0 * error, r.max_penetration, r.steps, r.cuts);
+      EXPECT_LT(error, 1e-3) << "phi " << phi << " dt " << dt;
+      EXPECT_LT(r.max_penetration, 1e-6) << "phi " << phi << " dt " << dt;
+    }
+  }
+}
+
+TEST(Incline, BlockWhoseFrictionAngleExceedsTheSlopeStaysPut) {
+  // phi = 50 > 45 degrees: the block sticks. Issue 5: it creeps less than 1e-5 m in 1 s and
+  // is never launched off the slope, for time steps 1e-3 to 1e-2 s and penalties 10 E to
+  // 1000 E (a published DDA code throws the block off the slope in this case). Measured:
+  // at most 1.8e-6 m (the elastic shear of the block and the springs as the contacts settle).
+  for (const double dt : {1e-2, 1e-3}) {
+    for (const double penalty : {10.0, 100.0, 1000.0}) {
+      Incline incline;
+      incline.phi_degrees = 50.0;
+      incline.dt = dt;
+      incline.penalty_factor = penalty;
+      const Incline::Result r = incline.run();
+      std::printf("stick dt %.0e penalty %6.0f E: moved %.3e m, max penetration %.2e m, %ld "
+                  "cuts\n",
+                  dt, penalty, r.largest_motion, r.max_penetration, r.cuts);
+      EXPECT_LT(r.largest_motion, 1e-5) << "dt " << dt << " penalty " << penalty;
+    }
+  }
+}
+
+TEST(Stack, BlocksAtRestStayAtRest) {
+  // Three 1 m x 0.5 m blocks stacked on a held base, under gravity, from the initial
+  // equilibrium: issue 5 asks for a drift below 1e-6 m over 1e4 steps. Nothing pushes them
+  // sideways, so any drift is the contact model's own (springs re-anchoring, chatter).
+  const ElasticMaterial rock = elastic(1e10, 0.25, 2500.0, PlaneCondition::strain);
+  std::vector<MaterialRegion> regions{testing::rectangle("base", -0.5, -0.5, 1.5, 0.0)};
+  std::vector<NamedCurve> curves{line("ground", {-0.5, -0.5}, {1.5, -0.5})};
+  std::vector<int> joints;
+  for (int k = 0; k < 3; ++k) {
+    regions.push_back(
+        testing::rectangle("b" + std::to_string(k), 0.0, 0.5 * k, 1.0, 0.5 * (k + 1)));
+    curves.push_back(line("j" + std::to_string(k), {0.0, 0.5 * k}, {1.0, 0.5 * k}));
+    joints.push_back(static_cast<int>(curves.size()) - 1);
+  }
+  testing::Setup s = testing::make_setup(regions, curves, joints, nullptr, 0.25, rock, 0);
+  Scene scene;
+  scene.supports = curve_support_points(s.model, 0, true, true, SupportMethod::exact, "ground");
+  scene.body_loads.push_back({{0.0, -9.81}, {}});
+  for (int k = 0; k < 3; ++k) {
+    const Point2 c(0.5, 0.5 * k + 0.25);
+    scene.monitors.push_back({s.model.find_element(c, 1e-9), c});
+  }
+  StepperOptions options;
+  options.time_step = 1e-3;
+  TimeStepper stepper(s.model, scene, options,
+                      contact_for(s.model, 40.0 * rock.young, {30.0 * pi / 180.0, 0.0, 0.0}));
+  stepper.equilibrate();
+  std::vector<Point2> start;
+  for (const MaterialPoint& m : stepper.scene().monitors)
+    start.push_back(m.position);
+  double drift = 0.0;
+  for (int step = 0; step < 10000; ++step) {
+    stepper.step(1e9);
+    for (std::size_t k = 0; k < start.size(); ++k)
+      drift = std::max(drift, (stepper.scene().monitors[k].position - start[k]).norm());
+  }
+  std::printf("stack: largest drift %.3e m over 1e4 steps, %ld cuts\n", drift,
+              stepper.counters().step_cuts);
+  EXPECT_LT(drift, 1e-6);
+}
+
+TEST(Drop, BlockDroppedOnABaseNeitherSinksInNorGainsEnergy) {
+  // A 0.5 m square block falls 0.5 m onto a held base and bounces. Issue 5: the penetration
+  // stays below 1e-3 of the block size, and the rebound never gains energy: kinetic plus
+  // gravitational energy of everything never exceeds its start (Shi's time integration only
+  // dissipates; the springs and the elastic bodies hold some energy, so the sum dips and
+  // recovers). The tolerance 1e-9 of the start energy is rounding.
+  const ElasticMaterial rock = elastic(1e10, 0.25, 2500.0, PlaneCondition::strain);
+  testing::Setup s =
+      testing::make_setup({testing::rectangle("base", -0.5, -0.5, 1.5, 0.0),
+                           testing::rectangle("block", 0.25, 0.5, 0.75, 1.0)},
+                          {line("ground", {-0.5, -0.5}, {1.5, -0.5})}, {}, nullptr, 0.125, rock, 0);
+  ASSERT_EQ(s.model.blocks.size(), 2U);
+  Scene scene;
+  scene.supports = curve_support_points(s.model, 0, true, true, SupportMethod::exact, "ground");
+  const double g = 9.81;
+  scene.body_loads.push_back({{0.0, -g}, {}});
+  const Point2 centre(0.5, 0.75);
+  scene.monitors.push_back({s.model.find_element(centre, 1e-9), centre});
+  StepperOptions options;
+  options.time_step = 1e-3;
+  TimeStepper stepper(s.model, scene, options,
+                      contact_for(s.model, 40.0 * rock.young, {30.0 * pi / 180.0, 0.0, 0.0}));
+  // Gravitational energy of all material in the current geometry: g rho t \int y dA.
+  auto potential = [&] {
+    double sum = 0.0;
+    for (int e = 0; e < s.model.n_elements(); ++e) {
+      const ElasticMaterial& m = s.model.material_of(e);
+      for (const Polygon& p : s.model.elements[static_cast<std::size_t>(e)].polygons) {
+        const std::size_t n = p.outer.size();
+        for (std::size_t i = 0; i < n; ++i) {
+          const Point2& a = p.outer[i];
+          const Point2& b = p.outer[(i + 1) % n];
+          sum += g * m.density * m.thickness_factor() * (a.x() * b.y() - b.x() * a.y()) *
+                 (a.y() + b.y()) / 6.0;
+        }
+      }
+    }
+    return sum;
+  };
+  const double start = potential();
+  double worst_gain = -1.0;
+  double deepest = 0.0;
+  double lowest = centre.y();
+  while (stepper.time() < 1.5 - 1e-9) {
+    const StepReport report = stepper.step(1.5);
+    const MaterialPoint& m = stepper.scene().monitors[0];
+    const double energy = report.kinetic_energy + potential();
+    worst_gain = std::max(worst_gain, (energy - start) / std::abs(start));
+    deepest = std::max(deepest, stepper.contact_penetration());
+    lowest = std::min(lowest, m.position.y());
+  }
+  const double rest = stepper.scene().monitors[0].position.y();
+  std::printf("drop: lowest centre %.6f m, at rest at %.6f m, deepest penetration %.3e m, "
+              "largest energy change %.3e of the start\n",
+              lowest, rest, deepest, worst_gain);
+  EXPECT_LT(lowest, 0.25 + 1e-3); // it landed ...
+  EXPECT_NEAR(rest, 0.25, 1e-3);  // ... and stays on the base
+  EXPECT_LT(deepest, 1e-3 * 0.5); // without sinking in
+  EXPECT_LT(worst_gain, 1e-9);
+}
+
+TEST(RotatingTriangle, PenetrationInTheEquationsIsThePenetrationOfTheMovedGeometry) {
+  // The VEM-DDA paper's rotating triangle (section 5.1, Table 1): a triangle on a foundation
+  // whose top does not move, a horizontal load at its apex, no gravity; it tips about its
+  // corner. The penetration each contact point had in the equations of a step must be the
+  // one measured in the moved geometry: the cover functions are linear in each element and
+  // the geometry moves by the same interpolation, so with a master edge that stays put the
+  // two are the same number (the paper's DDA with post-adjusted rotations differs by up to
+  // 100%). Every cover of the foundation is held (a support at its node), as the paper fixes
+  // all the foundation's vertices; the tolerance 1e-12 m is rounding of coordinates of order
+  // 1 m, against penetrations of 1e-9 to 1e-4 m.
+  const ElasticMaterial rock = elastic(20e9, 0.25, 2800.0, PlaneCondition::stress);
+  testing::Setup s =
+      testing::make_setup({testing::rectangle("foundation", -1.0, 0.0, 2.0, 1.0),
+                           {"triangle", {{{{0.0, 1.0}, {1.0, 1.0}, {0.5, 2.0}}, {}}}}},
+                          {line("seat", {0.0, 1.0}, {1.0, 1.0})}, {0}, nullptr, 0.25, rock, 0);
+  ASSERT_EQ(s.model.blocks.size(), 2U);
+  Scene scene;
+  for (const Point2& node : s.math.nodes) {
+    if (node.y() > 1.0 + 1e-12 || node.x() < -1.0 - 1e-12 || node.x() > 2.0 + 1e-12 ||
+        node.y() < -1e-12)
+      continue; // not a node of the foundation's covers
+    SupportPoint hold;
+    hold.point.position = Point2(node.x(), std::min(node.y(), 1.0 - 1e-9)); // the foundation side
+    hold.point.element = s.model.find_element(hold.point.position, 1e-9);
+    hold.start = hold.point.position;
+    hold.fix_x = hold.fix_y = true;
+    hold.origin = "foundation";
+    ASSERT_GE(hold.point.element, 0);
+    scene.supports.push_back(hold);
+  }
+  const Point2 apex(0.5, 1.99);
+  scene.point_loads.push_back({{s.model.find_element(apex, 1e-9), apex}, {1e4, 0.0}, {}});
+  StepperOptions options;
+  options.time_step = 1e-2;
+  ContactOptions contact;
+  contact.penalty = 100.0 * rock.young; // the paper's normal spring
+  contact.spring_length = s.model.scale;
+  std::vector<std::vector<JointStrength>> strengths;
+  std::vector<std::vector<bool>> bonds;
+  for (const BoundaryLoop& loop : s.model.loops) {
+    strengths.emplace_back(loop.edges.size(), JointStrength{30.0 * pi / 180.0, 0.0, 0.0});
+    bonds.emplace_back(loop.edges.size(), false);
+  }
+  TimeStepper stepper(s.model, scene, options,
+                      std::make_unique<ContactSystem>(contact, strengths, bonds));
+  double worst = 0.0;
+  double deepest = 0.0;
+  int checked = 0;
+  for (int step = 0; step < 19; ++step) {
+    stepper.step(1e9);
+    // The moved boundary, numbered as the contact system numbers it (loop after loop).
+    std::vector<Point2> position;
+    std::vector<int> next;
+    for (const BoundaryLoop& loop : s.model.loops) {
+      const int base = static_cast<int>(position.size());
+      const int n = loop.n_vertices();
+      for (int k = 0; k < n; ++k) {
+        position.push_back(loop.vertices[static_cast<std::size_t>(k)]);
+        next.push_back(base + (k + 1) % n);
+      }
+    }
+    for (const ContactPoint& p : stepper.contact()->points()) {
+      if (p.mode == ContactMode::open || p.alternative_master >= 0)
+        continue;
+      const auto at = [](int i) { return static_cast<std::size_t>(i); };
+      const bool edge = (p.key & 1U) != 0;
+      const Point2 slave = edge ? Point2((1.0 - p.u) * position[at(p.slave_edge)] +
+                                         p.u * position[at(next[at(p.slave_edge)])])
+                                : position[at(p.slave_edge)];
+      const Point2& a = position[at(p.master)];
+      const Point2& b = position[at(next[at(p.master)])];
+      const double measured = (slave - a).dot(Point2((b - a).y(), -(b - a).x())) / (b - a).norm();
+      worst = std::max(worst, std::abs(measured - p.gap));
+      deepest = std::max(deepest, -p.gap);
+      ++checked;
+    }
+  }
+  std::printf("rotating triangle: %d contact points checked, deepest %.3e m, largest "
+              "difference %.3e m\n",
+              checked, deepest, worst);
+  EXPECT_GT(checked, 19);
+  EXPECT_GT(deepest, 1e-9);
+  EXPECT_LT(worst, 1e-12);
+}
+
+} // namespace
+} // namespace nmm
