@@ -1,22 +1,200 @@
 // SPDX-License-Identifier: MIT
-// io/cli.cpp — the `nmm` command. The only place that catches everything and exits.
+// io/cli.cpp — the `nmm` command: run, mesh, check, demo. The only place that catches
+// everything and exits (exit codes: 0 ok, 2 input error, 3 numerical failure, 4 internal
+// error, 130 interrupted).
+#include "io/case_file.hpp"
+#include "io/case_runner.hpp"
+#include "io/cover_mesh_output.hpp"
 #include "io/demo.hpp"
 #include "io/dependency_info.hpp"
+#include "io/progress.hpp"
 #include "mesh/error.hpp"
 #include "solver/threads.hpp"
 
 #include <CLI/CLI.hpp>
+#include <unistd.h>
 
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <exception>
+#include <filesystem>
 #include <iostream>
+#include <sstream>
 #include <stdexcept>
+#include <string>
 
 namespace {
+
+namespace fs = std::filesystem;
 
 constexpr int exit_ok = 0;
 constexpr int exit_input_error = 2;
 constexpr int exit_numerical_error = 3;
 constexpr int exit_internal_error = 4;
+constexpr int exit_interrupted = 130; // 128 + SIGINT, as shells report a Ctrl-C
+
+// Set by SIGINT/SIGTERM; run_case() stops after the current step when it is true.
+std::atomic<bool> stop_requested{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
+
+void on_stop_signal(int signal_number) {
+  if (stop_requested.exchange(true)) {
+    // A second Ctrl-C: stop at once, the way the user expects from a second press.
+    std::signal(signal_number, SIG_DFL);
+    std::raise(signal_number);
+    return;
+  }
+  // Only async-signal-safe calls here: write(2), not iostreams.
+  static constexpr char message[] =
+      "\nnmm: stopping after this step (press Ctrl-C again to stop at once)\n";
+  if (::write(STDERR_FILENO, message, sizeof message - 1) < 0) {
+    // Nothing to do: the flag is set, the run stops anyway.
+  }
+}
+
+void install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_stop_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// The bundled example `nmm` runs without arguments.
+fs::path bundled_example() { return fs::path(NMM_EXAMPLES_DIR) / "01_cantilever" / "case.toml"; }
+
+struct RunArguments {
+  std::string case_file;
+  std::string output;
+  bool quiet = false;
+};
+
+int run_command(const RunArguments& args, bool is_bundled_example) {
+  const auto start = std::chrono::steady_clock::now();
+  const nmm::ProgressMode mode = args.quiet                ? nmm::ProgressMode::quiet
+                                 : ::isatty(STDERR_FILENO) ? nmm::ProgressMode::terminal
+                                                           : nmm::ProgressMode::lines;
+  nmm::ProgressPrinter printer(std::cerr, mode);
+  if (is_bundled_example)
+    printer.phase("no command given: running the bundled example " + args.case_file +
+                  " (nmm --help lists the commands)");
+  nmm::CaseSpec spec = nmm::read_case_file(args.case_file);
+  const long steps = spec.analysis.steps;
+  nmm::CaseAnalysis analysis(std::move(spec), [&](std::string_view text) { printer.phase(text); });
+  for (const std::string& warning : analysis.warnings())
+    printer.warning(warning);
+
+  nmm::RunOptions options;
+  options.output_dir = args.output;
+  options.stop = &stop_requested;
+  options.on_step = [&](const nmm::RunProgress& progress) {
+    printer.step(progress, progress.report->step == progress.steps);
+  };
+  options.seconds_before = seconds_since(start);
+  const fs::path dir = nmm::output_dir_of(analysis.spec(), options);
+  std::ostringstream what;
+  what << "running " << steps << (steps == 1 ? " step" : " steps") << " ("
+       << analysis.model().n_dofs() << " unknowns); output in " << dir.string();
+  printer.phase(what.str());
+
+  install_stop_handlers();
+  nmm::RunResult result;
+  try {
+    result = nmm::run_case(analysis, options);
+  } catch (const nmm::InputError&) {
+    // The output folder could not be created or written: there is nothing to point to.
+    printer.finish();
+    throw;
+  } catch (const std::exception&) {
+    printer.finish();
+    std::cerr << "nmm: the run stopped; what it wrote so far is in " << dir.string()
+              << " (summary.json has the reason)\n";
+    throw;
+  }
+  printer.finish();
+  nmm::write_closing_summary(std::cout, result, steps);
+  if (is_bundled_example) {
+    std::cout << "  next:     open " << (result.output_dir / "case.pvd").string()
+              << " in ParaView and colour by stress or displacement; the example and its "
+                 "right answer are explained in "
+              << (fs::path(NMM_EXAMPLES_DIR) / "01_cantilever" / "README.md").string() << '\n';
+  }
+  return result.status == nmm::RunStatus::interrupted ? exit_interrupted : exit_ok;
+}
+
+int mesh_command(const std::string& case_file, const std::string& output) {
+  const nmm::CaseSpec spec = nmm::read_case_file(case_file);
+  nmm::ProgressPrinter printer(std::cerr, nmm::ProgressMode::lines);
+  const nmm::CaseGeometry geometry =
+      nmm::build_case_geometry(spec, [&](std::string_view text) { printer.phase(text); });
+  const fs::path dir = output.empty() ? spec.output.dir : fs::path(output);
+  nmm::create_output_dir(dir);
+  nmm::write_cover_mesh_vtu(dir / "mesh.vtu", geometry.covers);
+  nmm::write_math_mesh_vtu(dir / "math_mesh.vtu", geometry.math, &geometry.covers);
+  nmm::write_boundary_vtp(dir / "boundary.vtp", geometry.covers);
+  for (const std::string& warning : spec.warnings)
+    std::cout << "warning: " << warning << '\n';
+  for (const std::string& warning : geometry.covers.warnings)
+    std::cout << "warning: " << spec.geometry.filename().string() << ": " << warning << '\n';
+  std::cout << "nmm: " << geometry.covers.n_elements() << " elements, "
+            << geometry.covers.n_covers() << " covers, " << geometry.covers.n_blocks()
+            << " blocks on " << geometry.math.n_triangles() << " math triangles\n"
+            << "  outputs:  " << (dir / "mesh.vtu").string() << ", "
+            << (dir / "math_mesh.vtu").string() << ", " << (dir / "boundary.vtp").string()
+            << " (open them in ParaView)\n";
+  return exit_ok;
+}
+
+const char* plural(long n) { return n == 1 ? "" : "s"; }
+
+int check_command(const std::string& case_file) {
+  nmm::CaseSpec spec = nmm::read_case_file(case_file);
+  nmm::CaseAnalysis analysis(std::move(spec));
+  const nmm::CaseSpec& s = analysis.spec();
+  const nmm::CaseGeometry& g = analysis.geometry();
+  const nmm::Model& model = analysis.model();
+  const nmm::Scene& scene = analysis.stepper().scene();
+  std::cout << case_file << ": ok, ready to run\n"
+            << "  geometry:   " << s.geometry.filename().string() << ": "
+            << g.physical.regions.size() << " Physical Surface" << plural(g.physical.n_regions())
+            << ", " << g.physical.curves.size() << " Physical Curve"
+            << plural(static_cast<long>(g.physical.curves.size())) << ", "
+            << g.physical.points.size() << " Physical Point"
+            << plural(static_cast<long>(g.physical.points.size())) << '\n'
+            << "  math mesh:  "
+            << (s.cover_mesh.kind == nmm::CoverMeshKind::regular ? "regular" : "gmsh") << ", size "
+            << s.cover_mesh.size << " m: " << g.math.n_triangles() << " triangles, "
+            << g.math.n_nodes() << " nodes\n"
+            << "  covers:     " << model.n_covers() << " covers (" << g.covers.stats.tiny_covers
+            << " tiny), " << model.n_elements() << " elements (" << g.covers.stats.cut_triangles
+            << " cut triangles), " << model.blocks.size() << " block"
+            << plural(static_cast<long>(model.blocks.size())) << '\n'
+            << "  unknowns:   " << model.n_dofs() << " (order " << model.order << ", "
+            << model.dofs_per_cover() << " per cover)\n"
+            << "  scene:      " << scene.supports.size() << " support points, "
+            << scene.body_loads.size() << " body, " << scene.point_loads.size() << " point and "
+            << scene.curve_loads.size() << " curve loads, " << scene.monitors.size() << " monitor"
+            << plural(static_cast<long>(scene.monitors.size())) << '\n'
+            << "  analysis:   "
+            << (s.analysis.kind == nmm::AnalysisKind::dynamic ? "dynamic" : "static") << ", "
+            << s.analysis.steps << " step" << plural(s.analysis.steps) << ", time step "
+            << (s.analysis.time_step ? std::to_string(*s.analysis.time_step) + " s" : "auto")
+            << ", output every " << s.output.every << " in " << s.output.dir.string() << '\n';
+  if (analysis.warnings().empty()) {
+    std::cout << "  warnings:   none\n";
+  } else {
+    std::cout << "  warnings:   " << analysis.warnings().size() << '\n';
+    for (const std::string& warning : analysis.warnings())
+      std::cout << "    " << warning << '\n';
+  }
+  return exit_ok;
+}
 
 int run(int argc, char** argv) {
   CLI::App app{"nmm: 2D numerical manifold method (NMM, DDA and VEM blocks)", "nmm"};
@@ -26,11 +204,43 @@ int run(int argc, char** argv) {
   int threads = nmm::available_cores();
   app.add_option("--threads", threads, "Threads for the linear solver (default: usable cores)")
       ->check(CLI::Range(1, 1024));
-  app.footer("With no command, runs the bundled demonstration.\n"
-             "Examples:\n"
-             "  nmm                 run the bundled demonstration\n"
-             "  nmm demo            print Shi's simplex-integration tables\n"
-             "  nmm --version       versions of nmm and every library it uses");
+  app.fallthrough(); // `nmm run case.toml --threads 2` as well as `nmm --threads 2 run ...`
+  app.footer(
+      "With no command, runs the bundled example (examples/01_cantilever) with output in ./out.\n"
+      "\n"
+      "Examples:\n"
+      "  nmm                              run the bundled cantilever example into ./out\n"
+      "  nmm run slope.toml               run a case; results go to its [output] dir\n"
+      "  nmm run slope.toml -o results --quiet --threads 2\n"
+      "  nmm mesh slope.toml -o mesh      write mesh.vtu, math_mesh.vtu, boundary.vtp only\n"
+      "  nmm check slope.toml             read and check the case and its geometry, run nothing\n"
+      "  nmm demo                         print Shi's simplex-integration tables\n"
+      "  nmm --version                    versions of nmm and every library it uses\n"
+      "\n"
+      "Outputs of run: case.pvd (open in ParaView), step_NNNNNN.vtu, history.csv, summary.json.\n"
+      "Ctrl-C stops after the current step and still writes them (press twice to stop at once).\n"
+      "Exit codes: 0 ok, 2 input error, 3 numerical failure, 4 internal error, 130 interrupted.");
+
+  RunArguments run_args;
+  CLI::App* run_cmd = app.add_subcommand("run", "Run a case: VTK steps, history.csv, summary.json");
+  run_cmd->add_option("case", run_args.case_file, "The case file (TOML)")->required();
+  run_cmd->add_option("-o,--output", run_args.output,
+                      "Output folder (default: [output] dir of the case, relative to it)");
+  run_cmd->add_flag("-q,--quiet", run_args.quiet, "Print only the closing summary");
+
+  std::string mesh_case;
+  std::string mesh_output;
+  CLI::App* mesh_cmd = app.add_subcommand(
+      "mesh", "Write the cover mesh only: mesh.vtu, math_mesh.vtu and boundary.vtp");
+  mesh_cmd->add_option("case", mesh_case, "The case file (TOML)")->required();
+  mesh_cmd->add_option("-o,--output", mesh_output,
+                       "Output folder (default: [output] dir of the case, relative to it)");
+
+  std::string check_case;
+  CLI::App* check_cmd = app.add_subcommand(
+      "check", "Read the case and its geometry, resolve every name, build the covers; run nothing");
+  check_cmd->add_option("case", check_case, "The case file (TOML)")->required();
+
   CLI::App* demo = app.add_subcommand("demo", "Print Shi's simplex-integration tables");
   app.require_subcommand(0, 1);
 
@@ -41,10 +251,18 @@ int run(int argc, char** argv) {
   }
   nmm::limit_threads(threads);
 
-  if (app.get_subcommands().empty() || demo->parsed()) {
+  if (demo->parsed())
     return nmm::run_simplex_integration_demo(std::cout) ? exit_ok : exit_numerical_error;
-  }
-  return exit_ok;
+  if (run_cmd->parsed())
+    return run_command(run_args, false);
+  if (mesh_cmd->parsed())
+    return mesh_command(mesh_case, mesh_output);
+  if (check_cmd->parsed())
+    return check_command(check_case);
+  RunArguments example;
+  example.case_file = bundled_example().string();
+  example.output = "out";
+  return run_command(example, true);
 }
 
 } // namespace

@@ -1,0 +1,612 @@
+// SPDX-License-Identifier: MIT
+#include "io/case_runner.hpp"
+
+#include "io/gmsh_reader.hpp"
+#include "io/step_output.hpp"
+#include "io/vtk_writer.hpp"
+#include "manifold/boundary_conditions.hpp"
+#include "mesh/cover_mesher.hpp"
+#include "mesh/error.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <system_error>
+#include <utility>
+
+namespace nmm {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string in_quotes(const std::string& name) { return '"' + name + '"'; }
+
+std::string point_text(const Point2& p) {
+  std::ostringstream out;
+  out.precision(10);
+  out << '(' << p.x() << ", " << p.y() << ')';
+  return out.str();
+}
+
+[[noreturn]] void fail(const CaseSpec& spec, int line, const std::string& message) {
+  throw InputError(spec.file.string(), line, 0, message);
+}
+
+std::string geometry_name(const CaseSpec& spec) { return spec.geometry.filename().string(); }
+
+/// Edit distance counting a swap of two neighbours as one edit (optimal string alignment),
+/// for "did you mean" (names are short: quadratic is fine).
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  const std::size_t columns = b.size() + 1;
+  std::vector<std::size_t> d((a.size() + 1) * columns);
+  const auto cell = [&](std::size_t i, std::size_t j) -> std::size_t& {
+    return d[i * columns + j];
+  };
+  for (std::size_t i = 0; i <= a.size(); ++i)
+    cell(i, 0) = i;
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    cell(0, j) = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t substitution = a[i - 1] == b[j - 1] ? 0 : 1;
+      cell(i, j) =
+          std::min({cell(i - 1, j) + 1, cell(i, j - 1) + 1, cell(i - 1, j - 1) + substitution});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+        cell(i, j) = std::min(cell(i, j), cell(i - 2, j - 2) + 1);
+    }
+  }
+  return cell(a.size(), b.size());
+}
+
+template <class Items> std::string did_you_mean(const std::string& name, const Items& items) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(1, name.size() / 3) + 1;
+  for (const auto& item : items) {
+    const std::size_t d = edit_distance(name, item.name);
+    if (d < best_distance) {
+      best_distance = d;
+      best = item.name;
+    }
+  }
+  return best.empty() ? std::string() : " (did you mean " + in_quotes(best) + "?)";
+}
+
+/// "a Physical Surface" / "a Physical Curve" / "a Physical Point" when @p name is a group of
+/// that kind, else empty.
+std::string group_kind(const PhysicalMesh& physical, const std::string& name) {
+  if (physical.find_region(name) >= 0)
+    return "a Physical Surface";
+  if (physical.find_curve(name) >= 0)
+    return "a Physical Curve";
+  if (physical.find_point(name) >= 0)
+    return "a Physical Point";
+  return {};
+}
+
+/// The message for a name of the case that is not a group of the wanted kind.
+/// @param what    how the case file refers to it: `material "granit"`, `[[boundary]] curve "x"`
+/// @param wanted  "Physical Surface", "Physical Curve" or "Physical Point"
+/// @param remedy  what to do when the name exists as another kind, e.g. `write point = "x"`
+template <class Items>
+std::string unknown_name(const CaseSpec& spec,
+                         const PhysicalMesh& physical,
+                         const std::string& what,
+                         const std::string& name,
+                         const std::string& wanted,
+                         const Items& wanted_items,
+                         const std::string& names,
+                         const std::string& remedy) {
+  const std::string other = group_kind(physical, name);
+  if (!other.empty()) {
+    return what + " is " + other + " of " + geometry_name(spec) + ", not a " + wanted + "; " +
+           remedy + " (the " + wanted + "s are: " + names + ")";
+  }
+  return what + " is not a " + wanted + " of " + geometry_name(spec) + " (it has: " + names +
+         "); correct the name in the case file" + did_you_mean(name, wanted_items) + ", or add " +
+         wanted + "(" + in_quotes(name) + ") = {...}; to " + geometry_name(spec);
+}
+
+ElasticMaterial elastic_material(const MaterialSpec& spec) {
+  ElasticMaterial m;
+  m.name = spec.name;
+  m.young = spec.young;
+  m.poisson = spec.poisson;
+  m.density = spec.density;
+  m.plane = spec.plane;
+  m.thickness = spec.thickness;
+  m.initial_stress = spec.initial_stress;
+  return m;
+}
+
+const char* model_name(MaterialModel model) {
+  switch (model) {
+  case MaterialModel::nmm:
+    return "nmm";
+  case MaterialModel::dda:
+    return "dda";
+  case MaterialModel::vem:
+    return "vem";
+  }
+  return "?";
+}
+
+Ramp ramp_of(const LoadSpec& load) { return {load.ramp_start, load.ramp_end}; }
+
+/// The curve a `[[boundary]]` or `[[load]]` names, checked to touch the material.
+int resolve_curve(const CaseSpec& spec,
+                  const PhysicalMesh& physical,
+                  const Model& model,
+                  const std::string& entry,
+                  const std::string& name,
+                  int line) {
+  const int curve = physical.find_curve(name);
+  if (curve < 0) {
+    fail(spec, line,
+         unknown_name(spec, physical, entry + " curve " + in_quotes(name), name, "Physical Curve",
+                      physical.curves, physical.curve_names(),
+                      physical.find_point(name) >= 0 ? "write point = " + in_quotes(name)
+                                                     : "name a Physical Curve"));
+  }
+  if (model.curve_pieces[at(curve)].empty()) {
+    fail(spec, line,
+         entry + " curve " + in_quotes(name) + " of " + geometry_name(spec) +
+             " does not touch the material, so it would act on nothing; move the curve onto "
+             "the material's boundary or into it, or name another curve");
+  }
+  return curve;
+}
+
+/// The point group a `[[boundary]]` or `[[load]]` names.
+int resolve_point_group(const CaseSpec& spec,
+                        const PhysicalMesh& physical,
+                        const std::string& entry,
+                        const std::string& name,
+                        int line) {
+  const int group = physical.find_point(name);
+  if (group < 0) {
+    fail(spec, line,
+         unknown_name(spec, physical, entry + " point " + in_quotes(name), name, "Physical Point",
+                      physical.points, physical.point_names(),
+                      physical.find_curve(name) >= 0 ? "write curve = " + in_quotes(name)
+                                                     : "name a Physical Point"));
+  }
+  return group;
+}
+
+} // namespace
+
+// ------------------------------------------------------------------------------------------
+// Geometry
+
+CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_phase) {
+  const auto phase = [&](const std::string& text) {
+    if (on_phase)
+      on_phase(text);
+  };
+  CaseGeometry g;
+  // One gmsh session for the physical mesh and a gmsh math mesh (saves the start-up).
+  std::optional<GmshSession> session;
+  if (!GmshSession::is_alive())
+    session.emplace();
+  GeometryReadOptions read_options;
+  read_options.curve_tolerance = spec.cover_mesh.curve_tolerance;
+
+  phase("reading " + spec.geometry.string());
+  Clock::time_point start = Clock::now();
+  g.physical = read_physical_mesh(spec.geometry, read_options);
+  g.seconds_geometry = seconds_since(start);
+
+  // Every [materials.X] a region, every region a material.
+  g.region_material.assign(g.physical.regions.size(), -1);
+  for (std::size_t m = 0; m < spec.materials.size(); ++m) {
+    const MaterialSpec& material = spec.materials[m];
+    const int region = g.physical.find_region(material.name);
+    if (region < 0) {
+      fail(spec, material.line,
+           unknown_name(spec, g.physical, "material " + in_quotes(material.name), material.name,
+                        "Physical Surface", g.physical.regions, g.physical.region_names(),
+                        "materials are Physical Surfaces: rename [materials." + material.name +
+                            "] after one of them"));
+    }
+    g.region_material[at(region)] = static_cast<int>(m);
+  }
+  for (std::size_t r = 0; r < g.physical.regions.size(); ++r) {
+    if (g.region_material[r] < 0) {
+      const std::string& name = g.physical.regions[r].name;
+      fail(spec, 0,
+           "Physical Surface " + in_quotes(name) + " of " + geometry_name(spec) +
+               " has no material; add a [materials." + name +
+               "] table (young, poisson, density) to the case file, or remove the surface "
+               "from the Physical Surfaces of " +
+               geometry_name(spec));
+    }
+  }
+  // Every [joints.X] a curve.
+  for (const JointSpec& joint : spec.joints) {
+    const int curve = g.physical.find_curve(joint.name);
+    if (curve < 0) {
+      fail(spec, joint.line,
+           unknown_name(spec, g.physical, "joint " + in_quotes(joint.name), joint.name,
+                        "Physical Curve", g.physical.curves, g.physical.curve_names(),
+                        "joints are Physical Curves: rename [joints." + joint.name +
+                            "] after one of them"));
+    }
+    g.joint_curves.push_back(curve);
+  }
+
+  start = Clock::now();
+  if (spec.cover_mesh.kind == CoverMeshKind::regular) {
+    g.math = make_regular_math_mesh(material_bounding_box(g.physical), spec.cover_mesh.size,
+                                    static_cast<double>(spec.cover_mesh.max_triangles));
+  } else {
+    phase("meshing " + geometry_name(spec) + " with gmsh");
+    g.math = make_gmsh_math_mesh(spec.geometry, spec.cover_mesh.size,
+                                 static_cast<double>(spec.cover_mesh.max_triangles), read_options);
+  }
+  g.seconds_math_mesh = seconds_since(start);
+  phase("math mesh: " + std::to_string(g.math.n_triangles()) + " triangles, " +
+        std::to_string(g.math.n_nodes()) + " nodes");
+
+  CoverMesherOptions mesher;
+  mesher.min_cover_area_ratio = spec.cover_mesh.min_cover_area_ratio;
+  for (std::size_t r = 0; r < g.physical.regions.size(); ++r) {
+    if (spec.materials[at(g.region_material[r])].model != MaterialModel::nmm)
+      mesher.block_regions.push_back(static_cast<int>(r));
+  }
+  start = Clock::now();
+  g.covers = build_cover_system(g.math, g.physical, g.joint_curves, mesher);
+  g.seconds_covers = seconds_since(start);
+  std::ostringstream done;
+  done.precision(3);
+  done << "cover system: " << g.covers.n_covers() << " covers, " << g.covers.n_elements()
+       << " elements, " << g.covers.n_blocks() << (g.covers.n_blocks() == 1 ? " block" : " blocks")
+       << " (" << g.seconds_covers << " s)";
+  phase(done.str());
+  return g;
+}
+
+// ------------------------------------------------------------------------------------------
+// The analysis
+
+CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_(std::move(spec)) {
+  // Refuse what cannot run yet before the (possibly long) geometry work.
+  for (const MaterialSpec& material : spec_.materials) {
+    if (material.model != MaterialModel::nmm) {
+      fail(spec_, material.line,
+           "[materials." + material.name + "] model = \"" + model_name(material.model) +
+               "\" is not yet supported (only \"nmm\" regions run so far; DDA and VEM blocks "
+               "are planned); use model = \"nmm\" for now");
+    }
+  }
+
+  geometry_ = build_case_geometry(spec_, on_phase);
+  const PhysicalMesh& physical = geometry_.physical;
+  warnings_ = spec_.warnings;
+  for (const std::string& w : geometry_.covers.warnings)
+    warnings_.push_back(geometry_name(spec_) + ": " + w);
+
+  std::vector<ElasticMaterial> materials;
+  materials.reserve(physical.regions.size());
+  for (const int m : geometry_.region_material)
+    materials.push_back(elastic_material(spec_.materials[at(m)]));
+  ModelOptions model_options;
+  model_options.order = spec_.cover_mesh.order;
+  model_ = make_model(geometry_.covers, geometry_.math, std::move(materials), model_options);
+
+  const BoundingBox box = material_bounding_box(physical);
+  const double size = box.is_empty() ? 1.0 : std::max(box.size().x(), box.size().y());
+  const double tolerance = 1e-9 * size;
+
+  Scene scene;
+  // Supports.
+  for (const BoundarySpec& b : spec_.boundaries) {
+    if (b.is_curve) {
+      const int curve = resolve_curve(spec_, physical, model_, "[[boundary]]", b.target, b.line);
+      const std::vector<SupportPoint> points = curve_support_points(
+          model_, curve, b.fix_x, b.fix_y, b.method, "curve " + in_quotes(b.target));
+      scene.supports.insert(scene.supports.end(), points.begin(), points.end());
+    } else {
+      const int group = resolve_point_group(spec_, physical, "[[boundary]]", b.target, b.line);
+      for (const Point2& x : physical.points[at(group)].points) {
+        const int element = model_.find_element(x, tolerance);
+        if (element < 0) {
+          fail(spec_, b.line,
+               "[[boundary]] point " + in_quotes(b.target) + ": the point " + point_text(x) +
+                   " of " + geometry_name(spec_) +
+                   " lies outside the material, so it cannot hold anything; move it onto or "
+                   "into a Physical Surface");
+        }
+        SupportPoint support;
+        support.point = {element, x};
+        support.fix_x = b.fix_x;
+        support.fix_y = b.fix_y;
+        support.method = b.method;
+        support.origin = "point " + in_quotes(b.target);
+        support.start = x;
+        scene.supports.push_back(support);
+      }
+    }
+  }
+  // Loads.
+  for (const LoadSpec& load : spec_.loads) {
+    switch (load.kind) {
+    case LoadKind::gravity:
+      scene.body_loads.push_back({load.vector, ramp_of(load)});
+      break;
+    case LoadKind::point: {
+      const int group = resolve_point_group(spec_, physical, "[[load]]", load.target, load.line);
+      for (const Point2& x : physical.points[at(group)].points) {
+        const int element = model_.find_element(x, tolerance);
+        if (element < 0) {
+          fail(spec_, load.line,
+               "[[load]] point " + in_quotes(load.target) + ": the point " + point_text(x) +
+                   " of " + geometry_name(spec_) +
+                   " lies outside the material, so the force would act on nothing; move it "
+                   "onto or into a Physical Surface");
+        }
+        scene.point_loads.push_back({{element, x}, load.vector, ramp_of(load)});
+      }
+      break;
+    }
+    case LoadKind::traction:
+    case LoadKind::pressure: {
+      const int curve = resolve_curve(spec_, physical, model_, "[[load]]", load.target, load.line);
+      CurveLoad curve_load;
+      curve_load.curve = curve;
+      curve_load.is_pressure = load.kind == LoadKind::pressure;
+      curve_load.traction = load.vector;
+      curve_load.pressure = load.pressure;
+      curve_load.ramp = ramp_of(load);
+      scene.curve_loads.push_back(curve_load);
+      break;
+    }
+    }
+  }
+  // Monitors.
+  for (const MonitorSpec& monitor : spec_.monitors) {
+    const int element = model_.find_element(monitor.point, tolerance);
+    if (element < 0) {
+      fail(spec_, monitor.line,
+           "[[monitor]] " + in_quotes(monitor.name) + ": the point " + point_text(monitor.point) +
+               " lies outside the material of " + geometry_name(spec_) +
+               "; give a point inside a Physical Surface or on its boundary");
+    }
+    scene.monitors.push_back({element, monitor.point});
+    monitor_starts_.push_back(monitor.point);
+  }
+
+  // A static analysis needs every body held (the stepper checks it too, without the line).
+  const bool dynamic = spec_.analysis.kind == AnalysisKind::dynamic;
+  if (!dynamic) {
+    std::set<int> held;
+    for (const SupportPoint& s : scene.supports)
+      held.insert(model_.elements[at(s.point.element)].block);
+    for (const ModelElement& element : model_.elements) {
+      if (held.count(element.block) != 0)
+        continue;
+      const MaterialSpec& material =
+          spec_.materials[at(geometry_.region_material[at(element.material)])];
+      fail(spec_, material.line,
+           "the body of material " + in_quotes(material.name) + " containing " +
+               point_text(element.polygons.front().outer.front()) +
+               " is held by no [[boundary]] support, and a static analysis has no inertia to "
+               "keep it from moving freely; add a [[boundary]] on a curve or point of this "
+               "body, or use [analysis] kind = \"dynamic\"");
+    }
+  }
+
+  StepperOptions options;
+  options.integration = dynamic ? TimeIntegration::dynamic : TimeIntegration::static_reset;
+  options.time_step = spec_.analysis.time_step;
+  options.max_step_displacement = spec_.analysis.max_step_displacement;
+  double largest_young = 0.0;
+  for (const ElasticMaterial& m : model_.materials)
+    largest_young = std::max(largest_young, m.young);
+  options.spring_stiffness =
+      spec_.analysis.penalty_stiffness.value_or(spec_.analysis.penalty * largest_young);
+  options.max_step_cuts = spec_.analysis.max_step_cuts;
+  stepper_ = std::make_unique<TimeStepper>(model_, std::move(scene), options);
+
+  // Initial velocities: each block takes those of its first material.
+  if (dynamic) {
+    std::vector<Point2> velocity(model_.blocks.size(), Point2::Zero());
+    std::vector<double> angular(model_.blocks.size(), 0.0);
+    bool moving = false;
+    for (std::size_t b = 0; b < model_.blocks.size(); ++b) {
+      const Block& block = model_.blocks[b];
+      if (block.materials.empty())
+        continue;
+      const MaterialSpec& material =
+          spec_.materials[at(geometry_.region_material[at(block.materials.front())])];
+      velocity[b] = material.initial_velocity;
+      angular[b] = material.initial_angular_velocity;
+      moving = moving || !velocity[b].isZero() || angular[b] != 0.0;
+    }
+    if (moving)
+      stepper_->set_rigid_velocities(velocity, angular);
+  }
+}
+
+CaseAnalysis::~CaseAnalysis() = default;
+
+std::vector<MonitorValues> CaseAnalysis::monitor_values() const {
+  std::vector<MonitorValues> values;
+  const std::vector<MaterialPoint>& monitors = stepper_->scene().monitors;
+  values.reserve(monitors.size());
+  for (std::size_t k = 0; k < monitors.size(); ++k) {
+    const MaterialPoint& p = monitors[k];
+    const Point2 u = p.position - monitor_starts_[k];
+    const Point2 v = stepper_->velocity_at(p.element, p.position);
+    const Eigen::Vector3d s = model_.elements[at(p.element)].stress.at(p.position);
+    values.push_back(
+        {p.position.x(), p.position.y(), u.x(), u.y(), v.x(), v.y(), s(0), s(1), s(2)});
+  }
+  return values;
+}
+
+// ------------------------------------------------------------------------------------------
+// The run
+
+fs::path output_dir_of(const CaseSpec& spec, const RunOptions& options) {
+  return options.output_dir.empty() ? spec.output.dir : options.output_dir;
+}
+
+void create_output_dir(const fs::path& dir) {
+  std::error_code error;
+  fs::create_directories(dir, error);
+  if (error || !fs::is_directory(dir)) {
+    throw InputError("cannot create the output folder " + dir.string() + ": " +
+                     (error ? error.message() : std::string("a file of that name exists")) +
+                     "; choose another folder with -o DIR or [output] dir in the case file");
+  }
+}
+
+namespace {
+
+/// Creates the folder, removes step and contact files of an earlier run.
+void prepare_output_dir(const fs::path& dir) {
+  create_output_dir(dir);
+  std::error_code error;
+  static const std::regex old_output(R"((step_[0-9]{6,}\.vtu|contacts_[0-9]{6,}\.vtp)(\.tmp)?)");
+  std::vector<fs::path> old_files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, error)) {
+    if (std::regex_match(entry.path().filename().string(), old_output))
+      old_files.push_back(entry.path());
+  }
+  for (const fs::path& file : old_files) {
+    std::error_code ignored;
+    fs::remove(file, ignored);
+  }
+}
+
+} // namespace
+
+RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
+  const Clock::time_point start = Clock::now();
+  const CaseSpec& spec = analysis.spec();
+  const Model& model = analysis.model();
+  TimeStepper& stepper = analysis.stepper();
+  NMM_ASSERT(stepper.counters().steps == 0, "run_case() runs an analysis once");
+
+  RunResult result;
+  result.output_dir = output_dir_of(spec, options);
+  const fs::path& dir = result.output_dir;
+  prepare_output_dir(dir);
+
+  RunSummary summary;
+  summary.dofs = model.n_dofs();
+  summary.covers = model.n_covers();
+  summary.elements = model.n_elements();
+  summary.blocks = static_cast<int>(model.blocks.size());
+  summary.title = spec.title;
+  summary.case_file = spec.file.string();
+  summary.geometry = spec.geometry.string();
+  summary.mesher = analysis.geometry().covers.stats;
+  const auto all_warnings = [&] {
+    std::vector<std::string> warnings = analysis.warnings();
+    warnings.insert(warnings.end(), stepper.warnings().begin(), stepper.warnings().end());
+    return warnings;
+  };
+  const auto update_summary = [&](const std::string& status) {
+    summary.status = status;
+    summary.steps = stepper.counters().steps;
+    summary.time = stepper.time();
+    summary.wall_seconds = options.seconds_before + seconds_since(start);
+    summary.unknowns = stepper.n_unknowns();
+    summary.step_cuts = stepper.counters().step_cuts;
+    summary.counters = stepper.counters();
+    summary.solver_counters = stepper.solver_counters();
+    summary.warnings = all_warnings();
+    summary.monitors.clear();
+    const std::vector<MonitorValues> values = analysis.monitor_values();
+    for (std::size_t k = 0; k < values.size(); ++k)
+      summary.monitors.emplace_back(spec.monitors[k].name, values[k]);
+  };
+  const fs::path summary_file = dir / "summary.json";
+  update_summary("running");
+  write_summary_json(summary_file, summary); // also proves the folder writable
+
+  std::vector<std::string> monitor_names;
+  for (const MonitorSpec& m : spec.monitors)
+    monitor_names.push_back(m.name);
+  HistoryWriter history(dir / "history.csv", monitor_names);
+  PvdSeries pvd(dir / "case.pvd");
+  const std::vector<Point2> initial_points = step_points(model);
+  long written = -1;
+  const auto write_step = [&](long step) {
+    const fs::path file = dir / step_file_name(step);
+    write_vtu(file, make_step_data(model, initial_points, stepper.velocity(), stepper.time()));
+    pvd.add(stepper.time(), file, 0);
+    written = step;
+    ++result.output_steps;
+  };
+
+  const long steps = spec.analysis.steps;
+  const double end_time = spec.analysis.end_time.value_or(std::numeric_limits<double>::infinity());
+  const long every = std::max(1, spec.output.every);
+  long step = 0;
+  try {
+    write_step(0);
+    while (step < steps) {
+      if (stepper.time() >= end_time * (1.0 - 1e-12))
+        break;
+      if (options.stop != nullptr && options.stop->load()) {
+        result.status = RunStatus::interrupted;
+        break;
+      }
+      const StepReport report = stepper.step(end_time);
+      step = report.step;
+      history.write_row(report, analysis.monitor_values());
+      if (step % every == 0)
+        write_step(step);
+      if (options.on_step) {
+        RunProgress progress;
+        progress.report = &report;
+        progress.steps = steps;
+        progress.end_time = end_time;
+        progress.wall_seconds = seconds_since(start);
+        progress.step_cuts = stepper.counters().step_cuts;
+        options.on_step(progress);
+      }
+    }
+    if (written != step)
+      write_step(step);
+  } catch (const std::exception& error) {
+    // Leave a readable record of how far the run got, then let the caller report it.
+    try {
+      if (written != step)
+        write_step(step);
+    } catch (const std::exception&) { // the first error is the one to report
+    }
+    try {
+      update_summary(error.what());
+      write_summary_json(summary_file, summary);
+    } catch (const std::exception&) { // the first error is the one to report
+    }
+    throw;
+  }
+
+  update_summary(result.status == RunStatus::completed ? "completed" : "interrupted");
+  write_summary_json(summary_file, summary);
+  result.steps = summary.steps;
+  result.time = summary.time;
+  result.wall_seconds = summary.wall_seconds;
+  result.step_cuts = summary.step_cuts;
+  result.warnings = summary.warnings;
+  return result;
+}
+
+} // namespace nmm

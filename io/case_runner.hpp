@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+// io/case_runner.hpp — from a case file to a running analysis and its outputs: the geometry
+// read and every name of the case resolved against it, the math mesh, cover system, model,
+// supports, loads and monitors, the time stepper, then the step loop writing the files of
+// DESIGN.md "Contracts users see / Output". `nmm run`, `nmm check` and `nmm mesh` are thin
+// layers over this header (io/cli.cpp).
+#pragma once
+
+#include "io/case_file.hpp"
+#include "io/history.hpp"
+#include "manifold/model.hpp"
+#include "mesh/cover_system.hpp"
+#include "mesh/math_mesh.hpp"
+#include "mesh/physical_mesh.hpp"
+#include "solver/time_stepper.hpp"
+
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace nmm {
+
+/// Receives one line about what is being done ("reading slope.geo", "cover system: ..."),
+/// for the progress output of the command line. May be empty.
+using PhaseCallback = std::function<void(std::string_view)>;
+
+/// The geometry side of a case: all that `nmm mesh` needs.
+struct CaseGeometry {
+  PhysicalMesh physical;
+  MathMesh math;
+  CoverSystem covers;
+  /// For each material region (PhysicalMesh::regions index), its CaseSpec::materials index.
+  std::vector<int> region_material;
+  /// PhysicalMesh::curves index of each `[joints.NAME]`, in CaseSpec::joints order.
+  std::vector<int> joint_curves;
+  /// Wall time of reading the geometry, making the math mesh and the cover system, s.
+  double seconds_geometry = 0.0;
+  double seconds_math_mesh = 0.0;
+  double seconds_covers = 0.0;
+};
+
+/// Reads the geometry of @p spec (`read_physical_mesh` with `[cover_mesh] curve_tolerance`),
+/// resolves the material and joint names, makes the math mesh (`[cover_mesh] kind`) and
+/// builds the cover system. Looks only at `geometry`, `[cover_mesh]`, `[materials]` and
+/// `[joints]`: the boundary, load and monitor names are not checked here.
+/// @throws InputError "case.toml:LINE: ..." when a `[materials.X]` is not a Physical Surface
+///         or a `[joints.X]` not a Physical Curve of the geometry (listing the names it
+///         has), when a Physical Surface has no `[materials]` table, and whatever the gmsh
+///         reader, the math mesh and the cover mesher throw.
+[[nodiscard]] CaseGeometry build_case_geometry(const CaseSpec& spec,
+                                               const PhaseCallback& on_phase = {});
+
+/// A case ready to run: geometry, model, supports, loads, monitors and the time stepper,
+/// every name of the case resolved. Neither copyable nor movable (the stepper holds the
+/// model by reference).
+class CaseAnalysis {
+public:
+  /// Builds everything; runs no step and writes no file.
+  /// @throws InputError "case.toml:LINE: what; what to do" for every problem of the case
+  ///         against the geometry: all of build_case_geometry(); a material with
+  ///         `model = "dda"` or `"vem"` (not yet supported); a `[[boundary]]` or `[[load]]`
+  ///         target that is not a Physical Curve / Physical Point of the right kind or that
+  ///         misses the material; a support point, point load or `[[monitor]]` outside the
+  ///         material; a body that nothing holds in a static analysis (naming its material).
+  explicit CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase = {});
+  ~CaseAnalysis();
+  CaseAnalysis(const CaseAnalysis&) = delete;
+  CaseAnalysis& operator=(const CaseAnalysis&) = delete;
+  CaseAnalysis(CaseAnalysis&&) = delete;
+  CaseAnalysis& operator=(CaseAnalysis&&) = delete;
+
+  [[nodiscard]] const CaseSpec& spec() const noexcept { return spec_; }
+  [[nodiscard]] const CaseGeometry& geometry() const noexcept { return geometry_; }
+  [[nodiscard]] const Model& model() const noexcept { return model_; }
+  [[nodiscard]] TimeStepper& stepper() noexcept { return *stepper_; }
+  [[nodiscard]] const TimeStepper& stepper() const noexcept { return *stepper_; }
+  /// Where each monitor started (CaseSpec::monitors order), for total displacements.
+  [[nodiscard]] const std::vector<Point2>& monitor_starts() const noexcept {
+    return monitor_starts_;
+  }
+  /// The case file's warnings, then the cover mesher's (prefixed with the geometry file).
+  /// The stepper's own warnings come later (TimeStepper::warnings()).
+  [[nodiscard]] const std::vector<std::string>& warnings() const noexcept { return warnings_; }
+  /// The current values of every monitor (CaseSpec::monitors order).
+  [[nodiscard]] std::vector<MonitorValues> monitor_values() const;
+
+private:
+  CaseSpec spec_;
+  CaseGeometry geometry_;
+  Model model_;
+  std::vector<Point2> monitor_starts_;
+  std::vector<std::string> warnings_;
+  std::unique_ptr<TimeStepper> stepper_;
+};
+
+/// How run_case() ended when it returns normally (a failure throws).
+enum class RunStatus { completed, interrupted };
+
+/// One completed step, for a progress display.
+struct RunProgress {
+  const StepReport* report = nullptr;
+  /// `[analysis] steps`.
+  long steps = 0;
+  /// `[analysis] end_time`, or +infinity.
+  double end_time = 0.0;
+  /// Since run_case() started, s.
+  double wall_seconds = 0.0;
+  /// Step cuts so far.
+  long step_cuts = 0;
+};
+
+/// Options of run_case().
+struct RunOptions {
+  /// Output folder; empty: `[output] dir` of the case. Created when missing.
+  std::filesystem::path output_dir;
+  /// When set and it becomes true (a signal handler sets it on Ctrl-C), the run stops after
+  /// the current step, writes the last step, the .pvd and summary.json (status
+  /// "interrupted") and returns RunStatus::interrupted.
+  const std::atomic<bool>* stop = nullptr;
+  /// Called after every step (for the progress line); may be empty.
+  std::function<void(const RunProgress&)> on_step;
+  /// Wall time already spent before run_case() (reading the case, building the model), s;
+  /// counted in summary.json's wall_seconds.
+  double seconds_before = 0.0;
+};
+
+/// What run_case() did.
+struct RunResult {
+  RunStatus status = RunStatus::completed;
+  long steps = 0;
+  double time = 0.0;
+  double wall_seconds = 0.0;
+  long step_cuts = 0;
+  std::filesystem::path output_dir;
+  /// Number of step files written.
+  long output_steps = 0;
+  /// Every warning of the run (as in summary.json).
+  std::vector<std::string> warnings;
+};
+
+/// Runs the analysis: `[analysis] steps` steps, stopping early at `[analysis] end_time`.
+/// Writes into the output folder (docs/output.md): `step_NNNNNN.vtu` at step 0, every
+/// `[output] every` steps and at the last step; `case.pvd`, rewritten after each of them;
+/// `history.csv`, one row per step, flushed each row; `summary.json` with status "running"
+/// at the start and the final status at the end. Step and contact files of an earlier run
+/// (`step_*.vtu`, `contacts_*.vtp`) in the folder are removed first so that the folder
+/// holds one run.
+/// @pre run_case() was not called on @p analysis before.
+/// @throws InputError naming the folder when it cannot be created or written.
+/// @throws NumericalError (or anything else) when a step fails; the last completed step,
+///         the .pvd and summary.json (status = the error message) are written first.
+RunResult run_case(CaseAnalysis& analysis, const RunOptions& options);
+
+/// Creates @p dir (and its parents) when missing.
+/// @throws InputError naming the folder when it cannot be created or is a file.
+void create_output_dir(const std::filesystem::path& dir);
+
+/// The output folder run_case() uses for @p options: options.output_dir or `[output] dir`.
+[[nodiscard]] std::filesystem::path output_dir_of(const CaseSpec& spec, const RunOptions& options);
+
+} // namespace nmm

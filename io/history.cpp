@@ -1,0 +1,256 @@
+// SPDX-License-Identifier: MIT
+#include "io/history.hpp"
+
+#include "mesh/error.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <system_error>
+
+namespace nmm {
+
+namespace {
+
+std::string system_reason(int error) { return std::generic_category().message(error); }
+
+/// Appends the members of an object, each line indented by @p indent.
+class JsonObject {
+public:
+  JsonObject(std::string& out, int indent) : out_(out), indent_(indent) { out_ += '{'; }
+  void key(std::string_view name) {
+    out_ += first_ ? "\n" : ",\n";
+    first_ = false;
+    out_.append(static_cast<std::size_t>(indent_ + 2), ' ');
+    out_ += json_string(name);
+    out_ += ": ";
+  }
+  void number(std::string_view name, double value) {
+    key(name);
+    out_ += json_number(value);
+  }
+  /// Wall-clock seconds: 6 significant digits (more would be noise).
+  void seconds(std::string_view name, double value) {
+    key(name);
+    if (!std::isfinite(value)) {
+      out_ += "null";
+      return;
+    }
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g", value);
+    out_ += text;
+  }
+  void integer(std::string_view name, long value) {
+    key(name);
+    out_ += std::to_string(value);
+  }
+  void string(std::string_view name, std::string_view value) {
+    key(name);
+    out_ += json_string(value);
+  }
+  void close() {
+    if (!first_) {
+      out_ += '\n';
+      out_.append(static_cast<std::size_t>(indent_), ' ');
+    }
+    out_ += '}';
+  }
+  [[nodiscard]] int inner_indent() const noexcept { return indent_ + 2; }
+
+private:
+  std::string& out_;
+  int indent_;
+  bool first_ = true;
+};
+
+} // namespace
+
+std::string history_header(std::span<const std::string> monitor_names) {
+  std::string header = "step,time,dt,open_close_iterations,contacts,kinetic_energy";
+  for (const std::string& name : monitor_names) {
+    for (const std::string_view value : monitor_value_names) {
+      header += ',';
+      header += name;
+      header += '.';
+      header += value;
+    }
+  }
+  return header;
+}
+
+HistoryWriter::HistoryWriter(std::filesystem::path file, std::vector<std::string> monitor_names)
+    : file_(std::move(file)), n_monitors_(monitor_names.size()) {
+  stream_ = std::fopen(file_.c_str(), "w");
+  if (stream_ == nullptr) {
+    throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
+                     "; choose a writable output folder with -o DIR or [output] dir");
+  }
+  const std::string header = history_header(monitor_names) + '\n';
+  if (std::fputs(header.c_str(), stream_) < 0 || std::fflush(stream_) != 0)
+    throw InputError("cannot write " + file_.string() + ": " + system_reason(errno));
+}
+
+HistoryWriter::~HistoryWriter() {
+  if (stream_ != nullptr)
+    static_cast<void>(std::fclose(stream_));
+}
+
+void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorValues> monitors) {
+  NMM_ASSERT(monitors.size() == n_monitors_, "one MonitorValues per monitor");
+  int status =
+      std::fprintf(stream_, "%ld,%.17g,%.17g,%d,%d,%.17g", report.step, report.time, report.dt,
+                   report.open_close_iterations, report.contacts, report.kinetic_energy);
+  for (const MonitorValues& monitor : monitors) {
+    for (const double value : monitor.values()) {
+      if (status >= 0)
+        status = std::fprintf(stream_, ",%.17g", value);
+    }
+  }
+  if (status < 0 || std::fputc('\n', stream_) == EOF || std::fflush(stream_) != 0)
+    throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
+                     "; is the disk full?");
+}
+
+std::string json_string(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    switch (c) {
+    case '"':
+      out += "\\\"";
+      break;
+    case '\\':
+      out += "\\\\";
+      break;
+    case '\n':
+      out += "\\n";
+      break;
+    case '\r':
+      out += "\\r";
+      break;
+    case '\t':
+      out += "\\t";
+      break;
+    case '\b':
+      out += "\\b";
+      break;
+    case '\f':
+      out += "\\f";
+      break;
+    default:
+      if (static_cast<unsigned char>(c) < 0x20) {
+        char escaped[8];
+        std::snprintf(escaped, sizeof escaped, "\\u%04x", static_cast<unsigned>(c));
+        out += escaped;
+      } else {
+        out += c;
+      }
+    }
+  }
+  out += '"';
+  return out;
+}
+
+std::string json_number(double value) {
+  if (!std::isfinite(value))
+    return "null";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+std::string summary_json(const RunSummary& s) {
+  std::string out;
+  JsonObject root(out, 0);
+  root.string("status", s.status);
+  root.integer("steps", s.steps);
+  root.number("time", s.time);
+  root.seconds("wall_seconds", s.wall_seconds);
+  root.integer("dofs", s.dofs);
+  root.integer("covers", s.covers);
+  root.integer("elements", s.elements);
+  root.integer("blocks", s.blocks);
+  root.key("warnings");
+  out += '[';
+  for (std::size_t k = 0; k < s.warnings.size(); ++k) {
+    out += k == 0 ? "\n" : ",\n";
+    out.append(static_cast<std::size_t>(root.inner_indent() + 2), ' ');
+    out += json_string(s.warnings[k]);
+  }
+  if (!s.warnings.empty()) {
+    out += '\n';
+    out.append(static_cast<std::size_t>(root.inner_indent()), ' ');
+  }
+  out += ']';
+  root.key("monitors");
+  JsonObject monitors(out, root.inner_indent());
+  for (const auto& [name, values] : s.monitors) {
+    monitors.key(name);
+    JsonObject monitor(out, monitors.inner_indent());
+    const auto numbers = values.values();
+    for (std::size_t k = 0; k < numbers.size(); ++k)
+      monitor.number(monitor_value_names[k], numbers[k]);
+    monitor.close();
+  }
+  monitors.close();
+
+  root.string("title", s.title);
+  root.string("case", s.case_file);
+  root.string("geometry", s.geometry);
+  root.integer("unknowns", s.unknowns);
+  root.integer("step_cuts", s.step_cuts);
+  root.key("counters");
+  JsonObject counters(out, root.inner_indent());
+  counters.integer("steps", s.counters.steps);
+  counters.integer("step_cuts", s.counters.step_cuts);
+  counters.integer("pattern_builds", s.counters.pattern_builds);
+  counters.integer("contact_searches", s.counters.contact_searches);
+  counters.integer("stress_updates", s.counters.stress_updates);
+  counters.integer("symbolic_analyses", s.solver_counters.symbolic_analyses);
+  counters.integer("factorizations", s.solver_counters.factorizations);
+  counters.integer("solves", s.solver_counters.solves);
+  counters.close();
+  root.key("mesher");
+  JsonObject mesher(out, root.inner_indent());
+  mesher.integer("math_triangles", s.mesher.math_triangles);
+  mesher.integer("cut_triangles", s.mesher.cut_triangles);
+  mesher.integer("physical_edges", s.mesher.physical_edges);
+  mesher.integer("tiny_atoms", s.mesher.tiny_atoms);
+  mesher.integer("tiny_covers", s.mesher.tiny_covers);
+  mesher.seconds("seconds_physical_arrangement", s.mesher.seconds_physical_arrangement);
+  mesher.seconds("seconds_cut_triangles", s.mesher.seconds_cut_triangles);
+  mesher.seconds("seconds_rest", s.mesher.seconds_rest);
+  mesher.close();
+  root.close();
+  out += '\n';
+  return out;
+}
+
+void write_summary_json(const std::filesystem::path& file, const RunSummary& summary) {
+  const std::string text = summary_json(summary);
+  std::filesystem::path temporary = file;
+  temporary += ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw InputError("cannot write " + file.string() + ": " + system_reason(errno) +
+                       "; choose a writable output folder with -o DIR or [output] dir");
+    }
+    out << text;
+    out.flush();
+    if (!out) {
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      throw InputError("cannot write " + file.string() + "; is the disk full?");
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, file, error);
+  if (error) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    throw InputError("cannot write " + file.string() + ": " + error.message());
+  }
+}
+
+} // namespace nmm

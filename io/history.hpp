@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: MIT
+// io/history.hpp — history.csv (one row per step) and summary.json of `nmm run` (DESIGN.md
+// "Contracts users see / Output"; docs/output.md shows both with examples).
+#pragma once
+
+#include "mesh/cover_system.hpp"
+#include "solver/linear_solver.hpp"
+#include "solver/time_stepper.hpp"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace nmm {
+
+/// What history.csv records of one monitor at the end of a step, SI units.
+struct MonitorValues {
+  double x = 0.0;   ///< current position, m
+  double y = 0.0;   ///< current position, m
+  double ux = 0.0;  ///< total displacement since the start, m
+  double uy = 0.0;  ///< total displacement since the start, m
+  double vx = 0.0;  ///< velocity, m/s
+  double vy = 0.0;  ///< velocity, m/s
+  double sxx = 0.0; ///< stress of the element holding the point, at the point, Pa
+  double syy = 0.0; ///< Pa
+  double sxy = 0.0; ///< Pa
+
+  /// The values in the order of monitor_value_names.
+  [[nodiscard]] std::array<double, 9> values() const noexcept {
+    return {x, y, ux, uy, vx, vy, sxx, syy, sxy};
+  }
+};
+
+/// The per-monitor column suffixes of history.csv and the keys of summary.json's monitors,
+/// in contract order.
+inline constexpr std::array<std::string_view, 9> monitor_value_names{"x",  "y",   "ux",  "uy", "vx",
+                                                                     "vy", "sxx", "syy", "sxy"};
+
+/// The header line of history.csv (without the newline): `step,time,dt,
+/// open_close_iterations,contacts,kinetic_energy` then `m.x,m.y,...,m.sxy` per monitor.
+[[nodiscard]] std::string history_header(std::span<const std::string> monitor_names);
+
+/// history.csv, written row by row and flushed after every row, so that a run that stops
+/// at any moment leaves every completed step on disk. Reals are written with 17
+/// significant digits (%.17g: they read back bit for bit).
+class HistoryWriter {
+public:
+  /// Creates (truncates) @p file and writes the header.
+  /// @throws InputError naming the file when it cannot be written.
+  HistoryWriter(std::filesystem::path file, std::vector<std::string> monitor_names);
+  ~HistoryWriter();
+  HistoryWriter(const HistoryWriter&) = delete;
+  HistoryWriter& operator=(const HistoryWriter&) = delete;
+  HistoryWriter(HistoryWriter&&) = delete;
+  HistoryWriter& operator=(HistoryWriter&&) = delete;
+
+  /// Appends the row of one step. @pre monitors.size() == the number of monitor names.
+  /// @throws InputError naming the file when the write fails (disk full).
+  void write_row(const StepReport& report, std::span<const MonitorValues> monitors);
+
+  [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
+
+private:
+  std::filesystem::path file_;
+  std::size_t n_monitors_ = 0;
+  std::FILE* stream_ = nullptr;
+};
+
+/// Everything summary.json holds. The first group of members is DESIGN.md's contract, the
+/// rest are extensions (docs/output.md).
+struct RunSummary {
+  /// "running" while the run goes on, "completed", "interrupted", or the error message of
+  /// the failure that stopped it.
+  std::string status = "running";
+  long steps = 0;            ///< steps completed
+  double time = 0.0;         ///< simulated time reached, s
+  double wall_seconds = 0.0; ///< since the case file was read
+  long dofs = 0;             ///< raw unknowns: covers x unknowns per cover
+  int covers = 0;
+  int elements = 0;
+  int blocks = 0;
+  std::vector<std::string> warnings;
+  /// Monitor name and its values at the last completed step (the start if none).
+  std::vector<std::pair<std::string, MonitorValues>> monitors;
+
+  // Extensions.
+  std::string title;
+  std::string case_file;
+  std::string geometry;
+  long unknowns = 0; ///< unknowns of the linear system after eliminating constraints
+  long step_cuts = 0;
+  StepperCounters counters;
+  SolverCounters solver_counters;
+  CoverMesherStats mesher;
+};
+
+/// summary.json's text: an object with the keys in the order of RunSummary, two-space
+/// indentation, strings escaped as JSON requires, reals with 17 significant digits except
+/// wall-clock seconds (6), non-finite reals as null.
+[[nodiscard]] std::string summary_json(const RunSummary& summary);
+
+/// Writes summary_json(@p summary) to @p file atomically (as `file.tmp`, then renamed).
+/// @throws InputError naming the file or directory when it cannot be written.
+void write_summary_json(const std::filesystem::path& file, const RunSummary& summary);
+
+/// @p text as a JSON string literal, quotes included: `"`, `\` and control characters
+/// escaped; other bytes (UTF-8) are copied as they are.
+[[nodiscard]] std::string json_string(std::string_view text);
+
+/// @p value as a JSON number with 17 significant digits (%.17g), or `null` when it is not
+/// finite (JSON has no NaN or infinity).
+[[nodiscard]] std::string json_number(double value);
+
+} // namespace nmm

@@ -1,0 +1,161 @@
+// SPDX-License-Identifier: MIT
+#include "io/step_output.hpp"
+
+#include "mesh/error.hpp"
+#include "mesh/geometry.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <utility>
+
+namespace nmm {
+
+namespace {
+
+/// Adds the first moments of a loop (shoelace, about @p origin for accuracy far from 0):
+/// signed area and signed area x centroid offset.
+void add_moments(const Loop& loop, const Point2& origin, double& area_sum, Point2& moment) {
+  for (std::size_t i = 0; i < loop.size(); ++i) {
+    const Point2 a = loop[i] - origin;
+    const Point2 b = loop[(i + 1) % loop.size()] - origin;
+    const double cross = a.x() * b.y() - a.y() * b.x();
+    area_sum += 0.5 * cross;
+    moment += cross * (a + b) / 6.0;
+  }
+}
+
+} // namespace
+
+PrincipalStress principal_stress(const Eigen::Vector3d& stress) {
+  const double mean = 0.5 * (stress(0) + stress(1));
+  const double half_difference = 0.5 * (stress(0) - stress(1));
+  const double radius = std::hypot(half_difference, stress(2));
+  PrincipalStress result;
+  result.s1 = mean + radius;
+  result.s2 = mean - radius;
+  const double angle = 0.5 * std::atan2(stress(2), half_difference);
+  result.direction = Point2(std::cos(angle), std::sin(angle));
+  return result;
+}
+
+Point2 element_centroid(const ModelElement& element) {
+  Point2 origin = Point2::Zero();
+  std::size_t n = 0;
+  for (const Polygon& polygon : element.polygons) {
+    for (const Point2& p : polygon.outer) {
+      origin += p;
+      ++n;
+    }
+  }
+  if (n == 0)
+    return origin;
+  origin /= static_cast<double>(n);
+  double total_area = 0.0;
+  Point2 total_moment = Point2::Zero();
+  for (const Polygon& polygon : element.polygons) {
+    // Outer loops count positive, holes negative, whatever their orientation.
+    double outer_area = 0.0;
+    Point2 outer_moment = Point2::Zero();
+    add_moments(polygon.outer, origin, outer_area, outer_moment);
+    const double outer_sign = outer_area >= 0.0 ? 1.0 : -1.0;
+    total_area += std::abs(outer_area);
+    total_moment += outer_sign * outer_moment;
+    for (const Loop& hole : polygon.holes) {
+      double hole_area = 0.0;
+      Point2 hole_moment = Point2::Zero();
+      add_moments(hole, origin, hole_area, hole_moment);
+      const double hole_sign = hole_area >= 0.0 ? 1.0 : -1.0;
+      total_area -= std::abs(hole_area);
+      total_moment -= hole_sign * hole_moment;
+    }
+  }
+  if (!(std::abs(total_area) > 0.0))
+    return origin;
+  return origin + total_moment / total_area;
+}
+
+std::vector<Point2> step_points(const Model& model) {
+  std::vector<Point2> points;
+  for (const ModelElement& element : model.elements) {
+    for (const Polygon& polygon : element.polygons) {
+      points.insert(points.end(), polygon.outer.begin(), polygon.outer.end());
+      for (const Loop& hole : polygon.holes)
+        points.insert(points.end(), hole.begin(), hole.end());
+    }
+  }
+  return points;
+}
+
+PolygonMeshData make_step_data(const Model& model,
+                               std::span<const Point2> initial_points,
+                               const Eigen::VectorXd& velocity,
+                               double time) {
+  NMM_ASSERT(velocity.size() == model.n_dofs(), "one velocity per raw unknown");
+  PolygonMeshData data;
+  std::vector<Point2> point_velocity;
+  std::vector<double> stress;
+  std::vector<double> principal;
+  std::vector<double> direction;
+  std::vector<std::int32_t> element_id;
+  std::vector<std::int32_t> material;
+  std::vector<std::int32_t> block;
+  std::vector<std::int32_t> kind;
+
+  for (int e = 0; e < model.n_elements(); ++e) {
+    const ModelElement& element = model.elements[static_cast<std::size_t>(e)];
+    const NmmShape shape = model.shape(e);
+    const ElementVector values = model.element_values(e, velocity);
+    const std::span<const double> v(values.data(), static_cast<std::size_t>(values.size()));
+    const auto add_loop = [&](const Loop& loop) {
+      std::vector<int> indices;
+      indices.reserve(loop.size());
+      for (const Point2& p : loop) {
+        indices.push_back(static_cast<int>(data.points.size()));
+        data.points.push_back(p);
+        point_velocity.push_back(shape.displacement_at(p, v));
+      }
+      return indices;
+    };
+    const Eigen::Vector3d s = element.stress.at(element_centroid(element));
+    const PrincipalStress p = principal_stress(s);
+    for (const Polygon& polygon : element.polygons) {
+      PolygonCell cell;
+      cell.outer = add_loop(polygon.outer);
+      for (const Loop& hole : polygon.holes)
+        cell.holes.push_back(add_loop(hole));
+      data.cells.push_back(std::move(cell));
+      stress.insert(stress.end(), {s(0), s(1), s(2)});
+      principal.insert(principal.end(), {p.s1, p.s2});
+      direction.insert(direction.end(), {p.direction.x(), p.direction.y(), 0.0});
+      element_id.push_back(e);
+      material.push_back(element.material);
+      block.push_back(element.block);
+      kind.push_back(static_cast<std::int32_t>(ElementKind::nmm));
+    }
+  }
+  NMM_ASSERT(initial_points.size() == data.points.size(),
+             "the initial points must be step_points() of the same model");
+  std::vector<Point2> displacement(data.points.size());
+  for (std::size_t k = 0; k < displacement.size(); ++k)
+    displacement[k] = data.points[k] - initial_points[k];
+
+  data.point_data.add_vectors("displacement", displacement).add_vectors("velocity", point_velocity);
+  data.cell_data.add("stress", std::move(stress), 3)
+      .add("principal_stresses", std::move(principal), 2)
+      .add("principal_direction", std::move(direction), 3)
+      .add("element", std::move(element_id))
+      .add("material", std::move(material))
+      .add("block", std::move(block))
+      .add("kind", std::move(kind));
+  data.field_data.add_value("TimeValue", time);
+  return data;
+}
+
+std::string step_file_name(long step) {
+  char name[40];
+  std::snprintf(name, sizeof name, "step_%06ld.vtu", step);
+  return name;
+}
+
+} // namespace nmm

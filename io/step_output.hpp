@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: MIT
+// io/step_output.hpp — the manifold elements of a running analysis as one VTK data set per
+// output step (`step_NNNNNN.vtu`; DESIGN.md "Output", docs/output.md lists every array).
+#pragma once
+
+#include "io/vtk_writer.hpp"
+#include "manifold/model.hpp"
+
+#include <Eigen/Core>
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace nmm {
+
+/// Element kinds of the `kind` cell array (DESIGN.md "special covers").
+enum class ElementKind { nmm = 0, dda = 1, vem = 2 };
+
+/// Principal stresses of a plane stress state (sxx, syy, sxy), Pa, s1 >= s2, and the unit
+/// direction of s1 (angle 0.5 atan2(2 sxy, sxx - syy) from x; (1, 0) for an isotropic
+/// state, where every direction is principal).
+struct PrincipalStress {
+  double s1 = 0.0;
+  double s2 = 0.0;
+  Point2 direction = Point2::UnitX();
+};
+
+[[nodiscard]] PrincipalStress principal_stress(const Eigen::Vector3d& stress);
+
+/// Area centroid of all polygons of @p element (holes subtracted); the mean vertex when the
+/// element has no area.
+[[nodiscard]] Point2 element_centroid(const ModelElement& element);
+
+/// Every vertex of every element polygon in the order make_step_data() writes its points:
+/// element by element, polygon by polygon, the outer loop, then each hole. Kept at step 0,
+/// it is the reference for the `displacement` array (the model moves vertices, never adds
+/// or removes them).
+[[nodiscard]] std::vector<Point2> step_points(const Model& model);
+
+/// The model's elements at their current position as a polygon mesh for write_vtu(): one
+/// cell per element polygon, each with its own points (as `mesh.vtu`).
+/// - point data `displacement` (m, 3 components, z = 0): current minus @p initial_points;
+///   `velocity` (m/s, 3 components): the element's velocity field at the point.
+/// - cell data `stress` (Pa; sxx, syy, sxy at the element's centroid), `principal_stresses`
+///   (Pa; s1 >= s2), `principal_direction` (unit vector of s1, 3 components, z = 0),
+///   `element`, `material`, `block`, `kind` (ElementKind; Int32).
+/// - field data `TimeValue` (s).
+/// @param initial_points  step_points() of the model at step 0.
+/// @param velocity        raw velocity of every unknown (TimeStepper::velocity()).
+[[nodiscard]] PolygonMeshData make_step_data(const Model& model,
+                                             std::span<const Point2> initial_points,
+                                             const Eigen::VectorXd& velocity,
+                                             double time);
+
+/// `step_NNNNNN.vtu`: the step number with at least 6 digits.
+[[nodiscard]] std::string step_file_name(long step);
+
+} // namespace nmm

@@ -1,0 +1,460 @@
+// SPDX-License-Identifier: MIT
+// The `nmm` program end to end, as a user runs it: the bundled cantilever example with every
+// output read back by VTK's own XML readers, `nmm check` and `nmm mesh`, the default run
+// without arguments, bad inputs (message and exit code 2), and Ctrl-C (exit code 130 with
+// every file still readable).
+#include "../support/case_fixtures.hpp"
+#include "../support/json_reader.hpp"
+#include "../support/process.hpp"
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLDataElement.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLUnstructuredGridReader.h>
+#include <vtkXMLUtilities.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace nmm {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::parse_json;
+using testing::ProcessResult;
+using testing::read_text;
+using testing::replaced;
+using testing::TempDir;
+
+const fs::path nmm_program = NMM_EXECUTABLE;
+const fs::path example = fs::path(NMM_EXAMPLES_DIR) / "01_cantilever";
+
+class Cli : public ::testing::Test {
+protected:
+  Cli() : dir_("nmm_cli") {}
+  ProcessResult nmm(const std::vector<std::string>& args, const fs::path& cwd = {}) {
+    std::vector<std::string> argv{nmm_program.string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return testing::run_process(argv, dir_.path() / ("nmm_" + std::to_string(++calls_)), cwd);
+  }
+  [[nodiscard]] const fs::path& dir() const { return dir_.path(); }
+
+private:
+  TempDir dir_;
+  int calls_ = 0;
+};
+
+void expect_all(const std::string& text, const std::vector<std::string>& parts) {
+  for (const std::string& part : parts)
+    EXPECT_NE(text.find(part), std::string::npos) << "\"" << part << "\" not in:\n" << text;
+}
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::istringstream in(text);
+  for (std::string part; std::getline(in, part, separator);)
+    parts.push_back(part);
+  return parts;
+}
+
+// ---------------------------------------------------------------------------------------
+// Reading the outputs back
+
+struct PvdEntry {
+  double time = 0.0;
+  std::string file;
+};
+
+/// The DataSet entries of a .pvd, parsed by VTK's XML parser.
+std::vector<PvdEntry> read_pvd(const fs::path& pvd) {
+  std::vector<PvdEntry> entries;
+  vtkSmartPointer<vtkXMLDataElement> root;
+  root.TakeReference(vtkXMLUtilities::ReadElementFromFile(pvd.c_str()));
+  EXPECT_NE(root, nullptr) << pvd << " does not parse";
+  if (root == nullptr)
+    return entries;
+  EXPECT_STREQ(root->GetName(), "VTKFile");
+  EXPECT_STREQ(root->GetAttribute("type"), "Collection");
+  vtkXMLDataElement* collection = root->FindNestedElementWithName("Collection");
+  EXPECT_NE(collection, nullptr);
+  if (collection == nullptr)
+    return entries;
+  for (int k = 0; k < collection->GetNumberOfNestedElements(); ++k) {
+    vtkXMLDataElement* dataset = collection->GetNestedElement(k);
+    entries.push_back(
+        {std::stod(dataset->GetAttribute("timestep")), dataset->GetAttribute("file")});
+  }
+  return entries;
+}
+
+vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& file) {
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  EXPECT_TRUE(reader->CanReadFile(file.c_str())) << file;
+  reader->SetFileName(file.c_str());
+  reader->Update();
+  return reader->GetOutput();
+}
+
+/// Checks that the array exists with @p components components and holds no NaN or infinity.
+void expect_finite_array(vtkFieldData* data, const char* name, int components, vtkIdType tuples) {
+  vtkDataArray* array = data->GetArray(name);
+  ASSERT_NE(array, nullptr) << "no array " << name;
+  EXPECT_EQ(array->GetNumberOfComponents(), components) << name;
+  EXPECT_EQ(array->GetNumberOfTuples(), tuples) << name;
+  for (vtkIdType t = 0; t < array->GetNumberOfTuples(); ++t)
+    for (int c = 0; c < components; ++c)
+      ASSERT_TRUE(std::isfinite(array->GetComponent(t, c))) << name << " tuple " << t;
+}
+
+/// Reads one step file and checks every array of docs/output.md; returns the grid.
+vtkSmartPointer<vtkUnstructuredGrid> read_step(const fs::path& file, double time) {
+  vtkSmartPointer<vtkUnstructuredGrid> grid = read_vtu(file);
+  const vtkIdType points = grid->GetNumberOfPoints();
+  const vtkIdType cells = grid->GetNumberOfCells();
+  EXPECT_GT(cells, 0) << file;
+  expect_finite_array(grid->GetPointData(), "displacement", 3, points);
+  expect_finite_array(grid->GetPointData(), "velocity", 3, points);
+  expect_finite_array(grid->GetCellData(), "stress", 3, cells);
+  expect_finite_array(grid->GetCellData(), "principal_stresses", 2, cells);
+  expect_finite_array(grid->GetCellData(), "principal_direction", 3, cells);
+  for (const char* name : {"element", "material", "block", "kind"})
+    expect_finite_array(grid->GetCellData(), name, 1, cells);
+  vtkDataArray* stored_time = grid->GetFieldData()->GetArray("TimeValue");
+  EXPECT_NE(stored_time, nullptr) << file;
+  if (stored_time != nullptr) {
+    EXPECT_EQ(stored_time->GetComponent(0, 0), time) << file;
+  }
+  vtkDataArray* principal = grid->GetCellData()->GetArray("principal_stresses");
+  if (principal != nullptr) {
+    for (vtkIdType c = 0; c < cells; ++c)
+      EXPECT_GE(principal->GetComponent(c, 0), principal->GetComponent(c, 1));
+  }
+  return grid;
+}
+
+/// history.csv: the exact header, @p rows rows of finite numbers, steps 1, 2, ...
+std::vector<std::vector<double>> read_history(const fs::path& file, const std::string& header) {
+  const std::vector<std::string> lines = split(read_text(file), '\n');
+  std::vector<std::vector<double>> rows;
+  EXPECT_FALSE(lines.empty());
+  if (lines.empty())
+    return rows;
+  EXPECT_EQ(lines[0], header);
+  const std::size_t columns = split(header, ',').size();
+  for (std::size_t k = 1; k < lines.size(); ++k) {
+    std::vector<double> row;
+    for (const std::string& cell : split(lines[k], ',')) {
+      row.push_back(std::stod(cell));
+      EXPECT_TRUE(std::isfinite(row.back())) << "line " << k + 1;
+    }
+    EXPECT_EQ(row.size(), columns) << "line " << k + 1;
+    EXPECT_EQ(row.front(), static_cast<double>(k)) << "one row per step, in order";
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+const std::string monitor_columns =
+    "tip.x,tip.y,tip.ux,tip.uy,tip.vx,tip.vy,tip.sxx,tip.syy,tip.sxy";
+const std::string history_columns =
+    "step,time,dt,open_close_iterations,contacts,kinetic_energy," + monitor_columns;
+
+// ---------------------------------------------------------------------------------------
+// The bundled example
+
+TEST_F(Cli, CantileverRunsEndToEndAndEveryOutputReadsBack) {
+  const fs::path out = dir() / "out";
+  const ProcessResult run =
+      nmm({"run", (example / "case.toml").string(), "-o", out.string(), "--quiet"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  expect_all(run.out,
+             {"completed", "1 step", "0 step cuts", "warnings: none", (out / "case.pvd").string()});
+  EXPECT_TRUE(run.err.empty()) << "--quiet prints only the closing summary:\n" << run.err;
+
+  // The series: step 0 (the start) and step 1, increasing times, every file readable.
+  const std::vector<PvdEntry> series = read_pvd(out / "case.pvd");
+  ASSERT_EQ(series.size(), 2u);
+  EXPECT_EQ(series[0].file, "step_000000.vtu");
+  EXPECT_EQ(series[1].file, "step_000001.vtu");
+  EXPECT_EQ(series[0].time, 0.0);
+  EXPECT_GT(series[1].time, series[0].time);
+  for (const PvdEntry& entry : series)
+    static_cast<void>(read_step(out / entry.file, entry.time));
+  // The loaded end went down by about 0.1 m (the accuracy is the verification test's job).
+  const auto last = read_vtu(out / "step_000001.vtu");
+  vtkDataArray* displacement = last->GetPointData()->GetArray("displacement");
+  ASSERT_NE(displacement, nullptr);
+  double lowest = 0.0;
+  for (vtkIdType p = 0; p < last->GetNumberOfPoints(); ++p)
+    lowest = std::min(lowest, displacement->GetComponent(p, 1));
+  EXPECT_LT(lowest, -0.05);
+  EXPECT_GT(lowest, -0.2);
+  const auto first = read_vtu(out / "step_000000.vtu");
+  vtkDataArray* start = first->GetPointData()->GetArray("displacement");
+  ASSERT_NE(start, nullptr);
+  for (vtkIdType p = 0; p < first->GetNumberOfPoints(); ++p)
+    EXPECT_EQ(start->GetComponent(p, 1), 0.0);
+
+  const auto rows = read_history(out / "history.csv", history_columns);
+  ASSERT_EQ(rows.size(), 1u);
+  const double tip_uy = rows[0][9];
+  EXPECT_LT(tip_uy, -0.05);
+
+  const testing::Json summary = parse_json(read_text(out / "summary.json"));
+  for (const char* key : {"status", "steps", "time", "wall_seconds", "dofs", "covers", "elements",
+                          "blocks", "warnings", "monitors", "counters", "mesher"})
+    EXPECT_NE(summary.find(key), nullptr) << key;
+  EXPECT_EQ(summary.at("status").string, "completed");
+  EXPECT_EQ(summary.at("steps").number, 1);
+  EXPECT_EQ(summary.at("blocks").number, 1);
+  EXPECT_TRUE(summary.at("warnings").is_array());
+  EXPECT_EQ(summary.at("monitors").at("tip").at("uy").number, tip_uy);
+  EXPECT_EQ(summary.at("counters").at("factorizations").number, 1);
+}
+
+TEST_F(Cli, RunWithoutQuietShowsProgressLinesWhenNotOnATerminal) {
+  const ProcessResult run = nmm(
+      {"run", (example / "case.toml").string(), "-o", (dir() / "out").string(), "--threads", "1"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  expect_all(run.err, {"nmm: reading", "cover system:", "step 1/1"});
+  EXPECT_EQ(run.err.find('\r'), std::string::npos) << "no carriage returns in a log";
+}
+
+TEST_F(Cli, CheckOnAGoodCasePrintsCountsAndExitsZero) {
+  const ProcessResult check = nmm({"check", (example / "case.toml").string()});
+  ASSERT_EQ(check.exit_code, 0) << check.err;
+  expect_all(check.out, {"ok, ready to run", "1 Physical Surface", "2 Physical Curves",
+                         "math mesh:", "covers:", "elements", "1 block", "unknowns:",
+                         "support points", "1 monitor", "static, 1 step", "warnings:   none"});
+}
+
+TEST_F(Cli, MeshWritesTheElementsTheMathMeshAndTheBoundary) {
+  const fs::path out = dir() / "mesh";
+  const ProcessResult mesh = nmm({"mesh", (example / "case.toml").string(), "-o", out.string()});
+  ASSERT_EQ(mesh.exit_code, 0) << mesh.err;
+  const auto elements = read_vtu(out / "mesh.vtu");
+  EXPECT_GT(elements->GetNumberOfCells(), 0);
+  EXPECT_NE(elements->GetCellData()->GetArray("covers"), nullptr);
+  EXPECT_GT(read_vtu(out / "math_mesh.vtu")->GetNumberOfCells(), 0);
+  vtkNew<vtkXMLPolyDataReader> boundary;
+  boundary->SetFileName((out / "boundary.vtp").c_str());
+  boundary->Update();
+  EXPECT_GT(boundary->GetOutput()->GetNumberOfCells(), 0);
+  expect_all(mesh.out, {"mesh.vtu", "math_mesh.vtu", "boundary.vtp"});
+}
+
+TEST_F(Cli, WithoutArgumentsRunsTheBundledExampleIntoOut) {
+  const ProcessResult run = nmm({}, dir());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(fs::exists(dir() / "out" / "case.pvd"));
+  EXPECT_TRUE(fs::exists(dir() / "out" / "summary.json"));
+  expect_all(run.out, {"completed", "ParaView", "01_cantilever"});
+  expect_all(run.err, {"bundled example"});
+}
+
+TEST_F(Cli, HelpShowsTheCommandsAndExamples) {
+  const ProcessResult help = nmm({"--help"});
+  EXPECT_EQ(help.exit_code, 0);
+  expect_all(help.out, {"run", "mesh", "check", "Examples:", "nmm run slope.toml", "Exit codes"});
+}
+
+// ---------------------------------------------------------------------------------------
+// Bad inputs: a message that says where and what to do, and exit code 2
+
+class BadInput : public Cli {
+protected:
+  /// Writes the fixture geometry and @p case_text, runs `nmm run`, expects exit code 2 and
+  /// every one of @p parts on stderr.
+  void expect_input_error(const std::string& case_text,
+                          const std::vector<std::string>& parts,
+                          const std::vector<std::string>& extra_args = {}) {
+    const fs::path file = testing::write_case(dir(), case_text);
+    std::vector<std::string> args{"run", file.string()};
+    args.insert(args.end(), extra_args.begin(), extra_args.end());
+    const ProcessResult run = nmm(args);
+    EXPECT_EQ(run.exit_code, 2) << run.err;
+    const std::vector<std::string> lines = split(run.err, '\n');
+    ASSERT_FALSE(lines.empty());
+    EXPECT_EQ(lines.back().rfind("error: ", 0), 0u) << "the last line is the error:\n" << run.err;
+    expect_all(run.err, parts);
+    EXPECT_FALSE(fs::exists(dir() / "out" / "summary.json"))
+        << "nothing is written for a case that cannot start";
+  }
+  [[nodiscard]] std::string at_line(int line) const {
+    return (dir() / "case.toml").string() + ":" + std::to_string(line) + ": ";
+  }
+};
+
+TEST_F(BadInput, MaterialNotInTheGeometryListsTheNamesItHas) {
+  expect_input_error(replaced(testing::plate_case, "[materials.rock]", "[materials.granit]"),
+                     {at_line(6), "material \"granit\" is not a Physical Surface of plate.geo",
+                      "(it has: \"rock\")"});
+}
+
+TEST_F(BadInput, RegionWithoutMaterial) {
+  expect_input_error(replaced(testing::plate_case, "plate.geo", "plate_and_clay.geo"),
+                     {"Physical Surface \"clay\"", "has no material", "[materials.clay]"});
+}
+
+TEST_F(BadInput, DdaModelIsNotYetSupported) {
+  expect_input_error(
+      replaced(testing::plate_case, "density = 2000.0", "model = \"dda\"\ndensity = 2000.0"),
+      {at_line(6), "model = \"dda\" is not yet supported"});
+}
+
+TEST_F(BadInput, MonitorOutsideTheMaterial) {
+  expect_input_error(replaced(testing::plate_case, "point = [2.0, 1.0]", "point = [7.0, 1.0]"),
+                     {at_line(19), "[[monitor]] \"corner\"", "outside the material"});
+}
+
+TEST_F(BadInput, PointSupportOutsideTheMaterial) {
+  expect_input_error(replaced(testing::plate_case, "curve = \"base\"", "point = \"far\""),
+                     {at_line(10), "[[boundary]] point \"far\"", "outside the material"});
+}
+
+TEST_F(BadInput, BoundaryCurveNotInTheGeometry) {
+  expect_input_error(replaced(testing::plate_case, "curve = \"base\"", "curve = \"bottom\""),
+                     {at_line(10), "[[boundary]] curve \"bottom\" is not a Physical Curve",
+                      "\"base\", \"right\", \"outside\""});
+}
+
+TEST_F(BadInput, StaticBodyWithoutSupportNamesTheMaterial) {
+  expect_input_error(
+      replaced(testing::plate_case, "[[boundary]]\ncurve = \"base\"\nfix = \"xy\"\n", ""),
+      {"material \"rock\"", "held by no [[boundary]] support"});
+}
+
+TEST_F(BadInput, MissingGeometryFile) {
+  expect_input_error(replaced(testing::plate_case, "plate.geo", "slope.geo"),
+                     {at_line(1), "slope.geo does not exist"});
+}
+
+TEST_F(BadInput, UnwritableOutputFolder) {
+  testing::write_text(dir() / "a_file", "not a folder");
+  expect_input_error(testing::plate_case,
+                     {"cannot create the output folder", (dir() / "a_file" / "out").string()},
+                     {"-o", (dir() / "a_file" / "out").string()});
+}
+
+TEST_F(BadInput, UnknownKeyInTheCaseFile) {
+  expect_input_error(replaced(testing::plate_case, "young = 1.0e9", "youngs = 1.0e9"),
+                     {(dir() / "case.toml").string() + ":8:", "youngs"});
+}
+
+TEST_F(BadInput, MissingCaseFileAndBadCommandLine) {
+  const ProcessResult missing = nmm({"run", (dir() / "nothing.toml").string()});
+  EXPECT_EQ(missing.exit_code, 2);
+  expect_all(missing.err, {"nothing.toml", "cannot open the case file"});
+  const ProcessResult no_case = nmm({"run"});
+  EXPECT_EQ(no_case.exit_code, 2);
+  const ProcessResult check = nmm({"check", (dir() / "nothing.toml").string()});
+  EXPECT_EQ(check.exit_code, 2);
+}
+
+TEST_F(BadInput, CheckReportsTheSameErrorsAsRun) {
+  const fs::path file = testing::write_case(
+      dir(), replaced(testing::plate_case, "[materials.rock]", "[materials.granit]"));
+  const ProcessResult check = nmm({"check", file.string()});
+  EXPECT_EQ(check.exit_code, 2);
+  expect_all(check.err, {at_line(6), "material \"granit\""});
+}
+
+TEST_F(Cli, NumericalFailureLeavesTheStartAndTheReasonAndExitsWith3) {
+  // Penalty supports of 1.7e308 N/m overflow the step matrix: the factorisation fails.
+  std::string text =
+      replaced(testing::plate_case, "fix = \"xy\"", "fix = \"xy\"\nmethod = \"penalty\"");
+  text = replaced(text, "kind = \"static\"", "kind = \"static\"\npenalty_stiffness = 1.7e308");
+  text = replaced(text, "order = 0", "order = 1");
+  const fs::path file = testing::write_case(dir(), text);
+  const ProcessResult run = nmm({"run", file.string(), "--quiet"});
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  expect_all(run.err, {"numerical failure: ", "what it wrote so far is in"});
+  const fs::path out = dir() / "out";
+  const testing::Json summary = parse_json(read_text(out / "summary.json"));
+  EXPECT_NE(summary.at("status").string.find("singular"), std::string::npos)
+      << summary.at("status").string;
+  EXPECT_EQ(summary.at("steps").number, 0);
+  const std::vector<PvdEntry> series = read_pvd(out / "case.pvd");
+  ASSERT_EQ(series.size(), 1u);
+  static_cast<void>(read_step(out / series[0].file, 0.0));
+}
+
+// ---------------------------------------------------------------------------------------
+// Ctrl-C
+
+class Interrupt : public Cli, public ::testing::WithParamInterface<int> {};
+
+TEST_P(Interrupt, StopsAfterTheCurrentStepWithEveryFileReadableAndExitCode130) {
+  // The cantilever, dynamic, coarse, with far more steps than the test waits for.
+  std::string text = read_text(example / "case.toml");
+  text = replaced(text, "geometry = \"cantilever.geo\"",
+                  "geometry = \"" + (example / "cantilever.geo").string() + "\"");
+  text = replaced(text, "size = 0.25", "size = 1.0");
+  text = replaced(text, "order = 1", "order = 0");
+  text = replaced(text, "young = 1.0e9", "young = 1.0e9\ndensity = 2000.0");
+  text = replaced(text, "kind = \"static\"\nsteps = 1",
+                  "kind = \"dynamic\"\nsteps = 10000000\ntime_step = 1.0e-4");
+  text = replaced(text, "every = 1", "every = 7");
+  testing::write_text(dir() / "long.toml", text);
+  const fs::path out = dir() / "out";
+
+  const testing::ChildProcess child = testing::start_process(
+      {nmm_program.string(), "run", (dir() / "long.toml").string(), "-o", out.string()},
+      dir() / "long");
+  // Wait for a few steps of history, then interrupt.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (split(read_text(out / "history.csv"), '\n').size() < 12 &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  ASSERT_EQ(::kill(child.pid, GetParam()), 0);
+  const int exit_code = testing::wait_process(child, std::chrono::seconds(120));
+  const std::string err = read_text(child.err_file);
+  ASSERT_EQ(exit_code, 130) << err;
+  expect_all(err, {"stopping after this step"});
+  expect_all(read_text(child.out_file), {"interrupted", "of 10000000 steps"});
+
+  const testing::Json summary = parse_json(read_text(out / "summary.json"));
+  EXPECT_EQ(summary.at("status").string, "interrupted");
+  const auto steps = static_cast<long>(summary.at("steps").number);
+  const auto rows = read_history(out / "history.csv", history_columns);
+  EXPECT_GE(steps, 11);
+  EXPECT_EQ(static_cast<long>(rows.size()), steps) << "one row per completed step";
+  EXPECT_EQ(summary.at("monitors").at("tip").at("uy").number, rows.back()[9]);
+
+  const std::vector<PvdEntry> series = read_pvd(out / "case.pvd");
+  ASSERT_GE(series.size(), 2u);
+  for (std::size_t k = 1; k < series.size(); ++k)
+    EXPECT_GT(series[k].time, series[k - 1].time);
+  char last_name[40];
+  std::snprintf(last_name, sizeof last_name, "step_%06ld.vtu", steps);
+  EXPECT_EQ(series.back().file, last_name) << "the last completed step is written";
+  EXPECT_EQ(series.back().time, rows.back()[1]);
+  for (const PvdEntry& entry : series)
+    static_cast<void>(read_step(out / entry.file, entry.time));
+  for (const auto& entry : fs::directory_iterator(out))
+    EXPECT_NE(entry.path().extension(), ".tmp") << entry.path();
+}
+
+INSTANTIATE_TEST_SUITE_P(Signals,
+                         Interrupt,
+                         ::testing::Values(SIGINT, SIGTERM),
+                         [](const ::testing::TestParamInfo<int>& signal_info) {
+                           return signal_info.param == SIGINT ? std::string("SIGINT")
+                                                              : std::string("SIGTERM");
+                         });
+
+} // namespace
+} // namespace nmm

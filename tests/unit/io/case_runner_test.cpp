@@ -1,0 +1,331 @@
+// SPDX-License-Identifier: MIT
+// The run pipeline through the library: names of the case resolved against the geometry
+// (every message with the case file's line and what to do), the scene built from the case,
+// the step loop and its files, stopping on request and at end_time.
+#include "io/case_runner.hpp"
+#include "io/vtk_writer.hpp"
+#include "mesh/error.hpp"
+
+#include "../../support/case_fixtures.hpp"
+#include "../../support/json_reader.hpp"
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace nmm {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::parse_json;
+using testing::plate_case;
+using testing::read_text;
+using testing::replaced;
+using testing::TempDir;
+using testing::write_case;
+
+class CaseRunner : public ::testing::Test {
+protected:
+  CaseRunner() : dir_("nmm_case_runner") {}
+  [[nodiscard]] fs::path case_file(const std::string& text) const {
+    return write_case(dir_.path(), text);
+  }
+  /// The message of the InputError that preparing @p text throws ("" and a failure if none).
+  [[nodiscard]] std::string error_of(const std::string& text) const {
+    try {
+      CaseAnalysis analysis(read_case_file(case_file(text)));
+      ADD_FAILURE() << "no InputError";
+    } catch (const InputError& error) {
+      return error.what();
+    }
+    return {};
+  }
+  [[nodiscard]] const fs::path& dir() const { return dir_.path(); }
+
+private:
+  TempDir dir_;
+};
+
+/// Expects @p text to contain every one of @p parts.
+void expect_all(const std::string& text, const std::vector<std::string>& parts) {
+  for (const std::string& part : parts)
+    EXPECT_NE(text.find(part), std::string::npos) << "\"" << part << "\" not in:\n" << text;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    lines.push_back(line);
+  return lines;
+}
+
+std::string case_prefix(const fs::path& dir, int line) {
+  return (dir / "case.toml").string() + ":" + std::to_string(line) + ": ";
+}
+
+// ---------------------------------------------------------------------------------------
+// Names against the geometry
+
+TEST_F(CaseRunner, MaterialNotInTheGeometryListsTheSurfacesItHas) {
+  const std::string message = error_of(replaced(plate_case, "[materials.rock]", "[materials.rok]"));
+  expect_all(message, {case_prefix(dir(), 6),
+                       "material \"rok\" is not a Physical Surface of plate.geo (it has: \"rock\")",
+                       "did you mean \"rock\"?"});
+}
+
+TEST_F(CaseRunner, MaterialNamingACurveSaysSo) {
+  const std::string message =
+      error_of(replaced(plate_case, "[materials.rock]", "[materials.base]"));
+  expect_all(message, {case_prefix(dir(), 6), "material \"base\" is a Physical Curve of plate.geo",
+                       "not a Physical Surface"});
+}
+
+TEST_F(CaseRunner, RegionWithoutMaterialIsNamed) {
+  const std::string message = error_of(replaced(plate_case, "plate.geo", "plate_and_clay.geo"));
+  expect_all(message, {"Physical Surface \"clay\" of plate_and_clay.geo has no material",
+                       "add a [materials.clay] table"});
+}
+
+TEST_F(CaseRunner, DdaAndVemAreNotYetSupportedAtTheMaterialsLine) {
+  for (const char* model : {"dda", "vem"}) {
+    const std::string message =
+        error_of(replaced(plate_case, "density = 2000.0",
+                          std::string("model = \"") + model + "\"\ndensity = 2000.0"));
+    expect_all(message, {case_prefix(dir(), 6), std::string("model = \"") + model + "\"",
+                         "not yet supported", "use model = \"nmm\""});
+  }
+}
+
+TEST_F(CaseRunner, JointMustBeAPhysicalCurve) {
+  const std::string text = replaced(plate_case, "[[boundary]]", "[joints.anchor]\n[[boundary]]");
+  expect_all(error_of(text), {case_prefix(dir(), 10),
+                              "joint \"anchor\" is a Physical Point of plate.geo, not a Physical "
+                              "Curve",
+                              "\"base\", \"right\", \"outside\""});
+  const std::string typo = replaced(plate_case, "[[boundary]]", "[joints.bsae]\n[[boundary]]");
+  expect_all(error_of(typo), {"joint \"bsae\" is not a Physical Curve", "did you mean \"base\"?"});
+}
+
+TEST_F(CaseRunner, BoundaryCurveThatIsAPointSaysToWritePoint) {
+  const std::string message =
+      error_of(replaced(plate_case, "curve = \"base\"", "curve = \"anchor\""));
+  expect_all(message, {case_prefix(dir(), 10), "[[boundary]] curve \"anchor\" is a Physical Point",
+                       "write point = \"anchor\""});
+}
+
+TEST_F(CaseRunner, LoadPointThatIsACurveSaysToWriteCurve) {
+  const std::string message =
+      error_of(replaced(plate_case, "curve = \"right\"\ntraction = [1.0e5, 0.0]",
+                        "point = \"right\"\nforce = [1.0, 0.0]"));
+  expect_all(message, {case_prefix(dir(), 13), "[[load]] point \"right\" is a Physical Curve",
+                       "write curve = \"right\""});
+}
+
+TEST_F(CaseRunner, CurveThatMissesTheMaterialIsAnError) {
+  const std::string message =
+      error_of(replaced(plate_case, "curve = \"right\"", "curve = \"outside\""));
+  expect_all(message,
+             {case_prefix(dir(), 13), "[[load]] curve \"outside\"", "does not touch the material"});
+}
+
+TEST_F(CaseRunner, PointSupportOutsideTheMaterialNamesTheGroupAndThePoint) {
+  const std::string message = error_of(replaced(plate_case, "curve = \"base\"", "point = \"far\""));
+  expect_all(message, {case_prefix(dir(), 10), "[[boundary]] point \"far\"", "(5, 5)",
+                       "lies outside the material"});
+}
+
+TEST_F(CaseRunner, PointLoadOutsideTheMaterialIsAnError) {
+  const std::string message =
+      error_of(replaced(plate_case, "curve = \"right\"\ntraction = [1.0e5, 0.0]",
+                        "point = \"far\"\nforce = [1.0, 0.0]"));
+  expect_all(message, {case_prefix(dir(), 13), "[[load]] point \"far\"", "outside the material"});
+}
+
+TEST_F(CaseRunner, MonitorOutsideTheMaterialGivesItsLine) {
+  const std::string message =
+      error_of(replaced(plate_case, "point = [2.0, 1.0]", "point = [2.5, 1.0]"));
+  expect_all(message, {case_prefix(dir(), 19), "[[monitor]] \"corner\"", "(2.5, 1)",
+                       "outside the material"});
+}
+
+TEST_F(CaseRunner, StaticBodyWithoutSupportNamesTheMaterial) {
+  const std::string message =
+      error_of(replaced(plate_case, "[[boundary]]\ncurve = \"base\"\nfix = \"xy\"\n", ""));
+  expect_all(message, {case_prefix(dir(), 6), "material \"rock\"", "held by no [[boundary]]",
+                       "kind = \"dynamic\""});
+}
+
+// ---------------------------------------------------------------------------------------
+// The scene
+
+TEST_F(CaseRunner, SceneHoldsEverySupportLoadAndMonitorOfTheCase) {
+  std::string text = replaced(plate_case, "[analysis]",
+                              "[[boundary]]\npoint = \"anchor\"\nfix = \"x\"\n"
+                              "[[load]]\npoint = \"anchor\"\nforce = [0.0, -1.0e3]\n"
+                              "[[load]]\ngravity = [0.0, -9.81]\nramp = [0.0, 2.0]\n[analysis]");
+  const CaseAnalysis analysis(read_case_file(case_file(text)));
+  const Scene& scene = analysis.stepper().scene();
+  int on_anchor = 0;
+  for (const SupportPoint& s : scene.supports) {
+    if (s.origin == "point \"anchor\"") {
+      ++on_anchor;
+      EXPECT_TRUE(s.fix_x);
+      EXPECT_FALSE(s.fix_y);
+      EXPECT_EQ(s.point.position, Point2(1.0, 0.5));
+    } else {
+      EXPECT_EQ(s.origin, "curve \"base\"");
+      EXPECT_EQ(s.point.position.y(), 0.0);
+    }
+  }
+  EXPECT_EQ(on_anchor, 1);
+  EXPECT_GT(scene.supports.size(), 2u);
+  ASSERT_EQ(scene.point_loads.size(), 1u);
+  EXPECT_EQ(scene.point_loads[0].force, Point2(0.0, -1.0e3));
+  ASSERT_EQ(scene.body_loads.size(), 1u);
+  EXPECT_EQ(scene.body_loads[0].ramp.end, 2.0);
+  ASSERT_EQ(scene.curve_loads.size(), 1u);
+  EXPECT_FALSE(scene.curve_loads[0].is_pressure);
+  ASSERT_EQ(scene.monitors.size(), 1u);
+  EXPECT_EQ(analysis.monitor_starts()[0], Point2(2.0, 1.0));
+  EXPECT_EQ(analysis.model().n_dofs(), 2 * analysis.model().n_covers());
+}
+
+TEST_F(CaseRunner, InitialVelocityMovesAFreeBodyAndGravityAcceleratesIt) {
+  // A free plate, dynamic, no support: 10 steps of 10 ms with v0 = (1, 0) and gravity.
+  std::string text = replaced(plate_case, "[[boundary]]\ncurve = \"base\"\nfix = \"xy\"\n", "");
+  text = replaced(text, "curve = \"right\"\ntraction = [1.0e5, 0.0]", "gravity = [0.0, -9.81]");
+  text = replaced(text, "kind = \"static\"\nsteps = 3",
+                  "kind = \"dynamic\"\nsteps = 10\ntime_step = 0.01");
+  text = replaced(text, "poisson = 0.25", "poisson = 0.25\ninitial_velocity = [1.0, 0.0]");
+  CaseAnalysis analysis(read_case_file(case_file(text)));
+  RunOptions options;
+  options.output_dir = dir() / "free";
+  const RunResult result = run_case(analysis, options);
+  EXPECT_EQ(result.steps, 10);
+  EXPECT_NEAR(result.time, 0.1, 1e-15);
+  const std::vector<MonitorValues> m = analysis.monitor_values();
+  ASSERT_EQ(m.size(), 1u);
+  // Shi's constant-acceleration step is exact for a rigid motion under constant gravity.
+  EXPECT_NEAR(m[0].ux, 0.1, 1e-9);
+  EXPECT_NEAR(m[0].uy, -0.5 * 9.81 * 0.01, 1e-9);
+  EXPECT_NEAR(m[0].vx, 1.0, 1e-8);
+  EXPECT_NEAR(m[0].vy, -9.81 * 0.1, 1e-8);
+  EXPECT_NEAR(m[0].x, 2.1, 1e-9);
+}
+
+// ---------------------------------------------------------------------------------------
+// The run and its files
+
+TEST_F(CaseRunner, RunWritesStepsEveryNAndTheLastHistoryAndSummary) {
+  CaseAnalysis analysis(read_case_file(case_file(plate_case)));
+  const RunResult result = run_case(analysis, {});
+  const fs::path out = dir() / "out"; // [output] dir, relative to the case file
+  EXPECT_EQ(result.output_dir, out);
+  EXPECT_EQ(result.status, RunStatus::completed);
+  EXPECT_EQ(result.steps, 3);
+  EXPECT_EQ(result.output_steps, 3); // steps 0, 2 and 3 (the last)
+  for (const char* name : {"step_000000.vtu", "step_000002.vtu", "step_000003.vtu", "case.pvd",
+                           "history.csv", "summary.json"})
+    EXPECT_TRUE(fs::exists(out / name)) << name;
+  EXPECT_FALSE(fs::exists(out / "step_000001.vtu"));
+  const std::vector<std::string> history = lines_of(read_text(out / "history.csv"));
+  ASSERT_EQ(history.size(), 4u);
+  EXPECT_EQ(
+      history[0].rfind("step,time,dt,open_close_iterations,contacts,kinetic_energy,corner.x,", 0),
+      0u);
+  EXPECT_EQ(history[3].substr(0, 2), "3,");
+  const testing::Json summary = parse_json(read_text(out / "summary.json"));
+  EXPECT_EQ(summary.at("status").string, "completed");
+  EXPECT_EQ(summary.at("steps").number, 3);
+  EXPECT_EQ(summary.at("time").number, 3.0); // static: 1 s per step
+  EXPECT_EQ(summary.at("covers").number, analysis.model().n_covers());
+  // The monitor of the summary is the last row of the history.
+  std::istringstream last(history[3]);
+  std::vector<double> row;
+  for (std::string cell; std::getline(last, cell, ',');)
+    row.push_back(std::stod(cell));
+  EXPECT_EQ(summary.at("monitors").at("corner").at("ux").number, row[8]);
+  EXPECT_EQ(summary.at("monitors").at("corner").at("sxy").number, row[14]);
+  EXPECT_GT(row[8], 0.0) << "the traction pulls the corner to +x";
+}
+
+TEST_F(CaseRunner, AStopRequestEndsTheRunWithTheStateWrittenAndStatusInterrupted) {
+  CaseAnalysis analysis(read_case_file(case_file(plate_case)));
+  std::atomic<bool> stop{false};
+  RunOptions options;
+  options.stop = &stop;
+  options.on_step = [&](const RunProgress& progress) {
+    if (progress.report->step == 1)
+      stop = true; // as the signal handler does during step 1
+  };
+  const RunResult result = run_case(analysis, options);
+  EXPECT_EQ(result.status, RunStatus::interrupted);
+  EXPECT_EQ(result.steps, 1);
+  const fs::path out = dir() / "out";
+  EXPECT_TRUE(fs::exists(out / "step_000001.vtu")) << "the last step is written";
+  EXPECT_EQ(parse_json(read_text(out / "summary.json")).at("status").string, "interrupted");
+  EXPECT_EQ(lines_of(read_text(out / "history.csv")).size(), 2u);
+}
+
+TEST_F(CaseRunner, EndTimeStopsTheRunEarlyAtExactlyThatTime) {
+  std::string text = replaced(plate_case, "kind = \"static\"\nsteps = 3",
+                              "kind = \"dynamic\"\nsteps = 100\ntime_step = 1.0e-3\n"
+                              "end_time = 3.5e-3");
+  CaseAnalysis analysis(read_case_file(case_file(text)));
+  const RunResult result = run_case(analysis, {});
+  EXPECT_EQ(result.steps, 4);
+  EXPECT_NEAR(result.time, 3.5e-3, 1e-15);
+  EXPECT_TRUE(fs::exists(dir() / "out" / "step_000004.vtu"));
+}
+
+TEST_F(CaseRunner, StepFilesOfAnEarlierRunAreRemovedAndOthersKept) {
+  const fs::path out = dir() / "out";
+  fs::create_directories(out);
+  testing::write_text(out / "step_000099.vtu", "old");
+  testing::write_text(out / "contacts_000099.vtp", "old");
+  testing::write_text(out / "notes.txt", "mine");
+  CaseAnalysis analysis(read_case_file(case_file(plate_case)));
+  static_cast<void>(run_case(analysis, {}));
+  EXPECT_FALSE(fs::exists(out / "step_000099.vtu"));
+  EXPECT_FALSE(fs::exists(out / "contacts_000099.vtp"));
+  EXPECT_TRUE(fs::exists(out / "notes.txt"));
+}
+
+TEST_F(CaseRunner, OutputFolderThatCannotBeCreatedIsAnInputErrorNamingIt) {
+  CaseAnalysis analysis(read_case_file(case_file(plate_case)));
+  testing::write_text(dir() / "a_file", "x");
+  RunOptions options;
+  options.output_dir = dir() / "a_file" / "out";
+  try {
+    static_cast<void>(run_case(analysis, options));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    expect_all(error.what(),
+               {"cannot create the output folder", options.output_dir.string(), "-o DIR"});
+  }
+}
+
+TEST_F(CaseRunner, GmshMathMeshAndOrderOneRunToo) {
+  std::string text =
+      replaced(plate_case, "size = 0.3\norder = 0", "kind = \"gmsh\"\nsize = 0.3\norder = 1");
+  CaseAnalysis analysis(read_case_file(case_file(text)));
+  EXPECT_EQ(analysis.model().order, 1);
+  const RunResult result = run_case(analysis, {});
+  EXPECT_EQ(result.status, RunStatus::completed);
+}
+
+TEST_F(CaseRunner, MeshGeometryResolvesOnlyMaterialsAndJoints) {
+  // A boundary naming a missing curve does not matter to `nmm mesh`.
+  const std::string text = replaced(plate_case, "curve = \"base\"", "curve = \"nowhere\"");
+  const CaseGeometry g = build_case_geometry(read_case_file(case_file(text)));
+  EXPECT_EQ(g.region_material, std::vector<int>{0});
+  EXPECT_GT(g.covers.n_elements(), 0);
+}
+
+} // namespace
+} // namespace nmm

@@ -1,0 +1,323 @@
+// SPDX-License-Identifier: MIT
+// history.csv, summary.json, the step data and the progress text, checked piece by piece.
+#include "io/case_runner.hpp"
+#include "io/history.hpp"
+#include "io/progress.hpp"
+#include "io/step_output.hpp"
+#include "mesh/error.hpp"
+
+#include "../../support/case_fixtures.hpp"
+#include "../../support/json_reader.hpp"
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace nmm {
+namespace {
+
+using testing::parse_json;
+using testing::read_text;
+using testing::TempDir;
+
+// ---------------------------------------------------------------------------------------
+// history.csv
+
+TEST(History, HeaderHasTheContractColumnsThenNineColumnsPerMonitor) {
+  const std::vector<std::string> monitors{"crest", "toe"};
+  EXPECT_EQ(history_header(monitors),
+            "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
+            "crest.x,crest.y,crest.ux,crest.uy,crest.vx,crest.vy,crest.sxx,crest.syy,crest.sxy,"
+            "toe.x,toe.y,toe.ux,toe.uy,toe.vx,toe.vy,toe.sxx,toe.syy,toe.sxy");
+  EXPECT_EQ(history_header({}), "step,time,dt,open_close_iterations,contacts,kinetic_energy");
+}
+
+TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
+  const TempDir dir("nmm_history");
+  const auto file = dir.path() / "history.csv";
+  HistoryWriter history(file, {"m"});
+  StepReport report;
+  report.step = 7;
+  report.time = 0.1 + 0.2; // not representable in fewer than 17 digits
+  report.dt = 1.0 / 3.0;
+  report.open_close_iterations = 2;
+  report.contacts = 5;
+  report.kinetic_energy = 1.0e-300;
+  MonitorValues m;
+  m.x = std::numbers::pi;
+  m.sxy = -2.5e9;
+  const std::vector<MonitorValues> monitors{m};
+  history.write_row(report, monitors);
+  // Read while the writer is still open: the row was flushed.
+  std::istringstream lines(read_text(file));
+  std::string header;
+  std::string row;
+  std::getline(lines, header);
+  std::getline(lines, row);
+  EXPECT_EQ(header, history_header(std::vector<std::string>{"m"}));
+  std::vector<std::string> fields;
+  std::istringstream cells(row);
+  for (std::string cell; std::getline(cells, cell, ',');)
+    fields.push_back(cell);
+  ASSERT_EQ(fields.size(), 6u + 9u);
+  EXPECT_EQ(fields[0], "7");
+  EXPECT_EQ(std::stod(fields[1]), 0.1 + 0.2);
+  EXPECT_EQ(std::stod(fields[2]), 1.0 / 3.0);
+  EXPECT_EQ(fields[3], "2");
+  EXPECT_EQ(fields[4], "5");
+  EXPECT_EQ(std::stod(fields[5]), 1.0e-300);
+  EXPECT_EQ(std::stod(fields[6]), std::numbers::pi);
+  EXPECT_EQ(std::stod(fields[14]), -2.5e9);
+}
+
+TEST(History, UnwritableFileIsAnInputErrorNamingIt) {
+  const TempDir dir("nmm_history");
+  testing::write_text(dir.path() / "file", "x");
+  const auto file = dir.path() / "file" / "history.csv"; // a file as parent folder
+  try {
+    HistoryWriter history(file, {});
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    EXPECT_NE(std::string(error.what()).find(file.string()), std::string::npos) << error.what();
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// summary.json
+
+TEST(Json, StringsAreEscapedAsJsonRequires) {
+  EXPECT_EQ(json_string("plain"), "\"plain\"");
+  EXPECT_EQ(json_string("a \"b\" \\ c"), R"("a \"b\" \\ c")");
+  EXPECT_EQ(json_string("line\nnext\ttab"), R"("line\nnext\ttab")");
+  EXPECT_EQ(json_string(std::string("\x01", 1)), R"("\u0001")");
+  EXPECT_EQ(json_string("m³ und Ü"), "\"m³ und Ü\""); // UTF-8 passes through
+  const std::string nasty = "case.toml:3: \"x\"\\y\n\x1f";
+  EXPECT_EQ(parse_json(json_string(nasty)).string, nasty);
+}
+
+TEST(Json, NumbersRoundTripAndNonFiniteBecomesNull) {
+  EXPECT_EQ(std::stod(json_number(0.1 + 0.2)), 0.1 + 0.2);
+  EXPECT_EQ(json_number(std::numeric_limits<double>::quiet_NaN()), "null");
+  EXPECT_EQ(json_number(-std::numeric_limits<double>::infinity()), "null");
+  EXPECT_EQ(json_number(2.0), "2");
+}
+
+TEST(Json, SummaryIsValidJsonWithTheContractKeysFirst) {
+  RunSummary s;
+  s.status = "numerical failure: \"x\"";
+  s.steps = 12;
+  s.time = 0.5;
+  s.wall_seconds = 1.25;
+  s.dofs = 100;
+  s.covers = 50;
+  s.elements = 80;
+  s.blocks = 2;
+  s.warnings = {"case.toml:3: a \"quoted\" warning", "second"};
+  MonitorValues crest;
+  crest.uy = -0.125;
+  crest.sxx = std::numeric_limits<double>::quiet_NaN();
+  s.monitors = {{"crest", crest}, {"toe", MonitorValues{}}};
+  s.counters.steps = 12;
+  s.solver_counters.factorizations = 13;
+  s.mesher.cut_triangles = 4;
+  const testing::Json json = parse_json(summary_json(s));
+  ASSERT_TRUE(json.is_object());
+  const std::vector<std::string> contract{"status",   "steps",   "time",     "wall_seconds",
+                                          "dofs",     "covers",  "elements", "blocks",
+                                          "warnings", "monitors"};
+  const std::vector<std::string> keys = json.keys();
+  ASSERT_GE(keys.size(), contract.size());
+  EXPECT_EQ(std::vector<std::string>(keys.begin(), keys.begin() + 10), contract);
+  EXPECT_EQ(json.at("status").string, s.status);
+  EXPECT_EQ(json.at("steps").number, 12);
+  EXPECT_EQ(json.at("blocks").number, 2);
+  ASSERT_EQ(json.at("warnings").items.size(), 2u);
+  EXPECT_EQ(json.at("warnings").items[0].string, s.warnings[0]);
+  const testing::Json& monitor = json.at("monitors").at("crest");
+  std::vector<std::string> names(monitor_value_names.begin(), monitor_value_names.end());
+  EXPECT_EQ(monitor.keys(), names);
+  EXPECT_EQ(monitor.at("uy").number, -0.125);
+  EXPECT_EQ(monitor.at("sxx").kind, testing::Json::Kind::null);
+  EXPECT_TRUE(json.at("monitors").at("toe").is_object());
+  EXPECT_EQ(json.at("counters").at("factorizations").number, 13);
+  EXPECT_EQ(json.at("mesher").at("cut_triangles").number, 4);
+  // An empty summary is valid too (no warnings, no monitors).
+  EXPECT_NO_THROW(static_cast<void>(parse_json(summary_json(RunSummary{}))));
+}
+
+TEST(Json, SummaryFileIsReplacedAtomically) {
+  const TempDir dir("nmm_summary");
+  RunSummary s;
+  write_summary_json(dir.path() / "summary.json", s);
+  s.status = "completed";
+  write_summary_json(dir.path() / "summary.json", s);
+  EXPECT_EQ(parse_json(read_text(dir.path() / "summary.json")).at("status").string, "completed");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "summary.json.tmp"));
+}
+
+// ---------------------------------------------------------------------------------------
+// Step data
+
+TEST(StepOutput, PrincipalStressesAreOrderedAndTheDirectionIsAnEigenvector) {
+  const std::vector<Eigen::Vector3d> states{{1.0e6, -2.0e6, 0.0},
+                                            {-2.0e6, 1.0e6, 0.0},
+                                            {0.0, 0.0, 3.0e6},
+                                            {5.0, 5.0, 0.0},
+                                            {-1.0e6, -3.0e6, 0.7e6}};
+  for (const Eigen::Vector3d& s : states) {
+    const PrincipalStress p = principal_stress(s);
+    EXPECT_GE(p.s1, p.s2);
+    EXPECT_NEAR(p.s1 + p.s2, s(0) + s(1), 1e-9 * (1.0 + s.norm()));
+    EXPECT_NEAR(p.direction.norm(), 1.0, 1e-14);
+    Eigen::Matrix2d tensor;
+    tensor << s(0), s(2), s(2), s(1);
+    EXPECT_NEAR((tensor * p.direction - p.s1 * p.direction).norm(), 0.0, 1e-9 * (1.0 + s.norm()));
+  }
+  const PrincipalStress shear = principal_stress({0.0, 0.0, 3.0e6});
+  EXPECT_DOUBLE_EQ(shear.s1, 3.0e6);
+  EXPECT_NEAR(shear.direction.x(), std::sqrt(0.5), 1e-15);
+  EXPECT_NEAR(shear.direction.y(), std::sqrt(0.5), 1e-15);
+}
+
+TEST(StepOutput, CentroidSubtractsHolesWhateverTheLoopOrientation) {
+  ModelElement element;
+  // A 4 x 2 rectangle (clockwise) with a 1 x 1 hole (counter-clockwise) at its right end.
+  element.polygons.push_back(
+      {{{0, 0}, {0, 2}, {4, 2}, {4, 0}}, {{{3, 0.5}, {4 - 0.0, 0.5}, {4, 1.5}, {3, 1.5}}}});
+  const Point2 c = element_centroid(element);
+  // Rectangle area 8 at (2, 1), hole area 1 at (3.5, 1): (16 - 3.5) / 7.
+  EXPECT_NEAR(c.x(), 12.5 / 7.0, 1e-14);
+  EXPECT_NEAR(c.y(), 1.0, 1e-14);
+}
+
+TEST(StepOutput, StepFileNamesHaveSixDigitsAtLeast) {
+  EXPECT_EQ(step_file_name(0), "step_000000.vtu");
+  EXPECT_EQ(step_file_name(123), "step_000123.vtu");
+  EXPECT_EQ(step_file_name(12345678), "step_12345678.vtu");
+}
+
+TEST(StepOutput, EveryArrayHasOneTuplePerPointOrCellAndTheStartHasNoDisplacement) {
+  const TempDir dir("nmm_step_output");
+  CaseAnalysis analysis(read_case_file(testing::write_case(dir.path(), testing::plate_case)));
+  const Model& model = analysis.model();
+  const std::vector<Point2> start = step_points(model);
+  const PolygonMeshData data = make_step_data(model, start, analysis.stepper().velocity(), 0.25);
+  ASSERT_EQ(data.points.size(), start.size());
+  std::size_t n_cells = 0;
+  for (const ModelElement& e : model.elements)
+    n_cells += e.polygons.size();
+  ASSERT_EQ(data.cells.size(), n_cells);
+  struct Expected {
+    const DataArrays* on;
+    const char* name;
+    int components;
+    bool integer;
+  };
+  const std::vector<Expected> expected{{&data.point_data, "displacement", 3, false},
+                                       {&data.point_data, "velocity", 3, false},
+                                       {&data.cell_data, "stress", 3, false},
+                                       {&data.cell_data, "principal_stresses", 2, false},
+                                       {&data.cell_data, "principal_direction", 3, false},
+                                       {&data.cell_data, "element", 1, true},
+                                       {&data.cell_data, "material", 1, true},
+                                       {&data.cell_data, "block", 1, true},
+                                       {&data.cell_data, "kind", 1, true}};
+  for (const Expected& e : expected) {
+    const DataArray* array = e.on->find(e.name);
+    ASSERT_NE(array, nullptr) << e.name;
+    EXPECT_EQ(array->n_components, e.components) << e.name;
+    EXPECT_EQ(array->is_integer(), e.integer) << e.name;
+    EXPECT_EQ(array->n_tuples(), e.on == &data.point_data ? data.points.size() : n_cells) << e.name;
+  }
+  for (const double d : std::get<std::vector<double>>(data.point_data.find("displacement")->values))
+    EXPECT_EQ(d, 0.0);
+  for (const std::int32_t k :
+       std::get<std::vector<std::int32_t>>(data.cell_data.find("kind")->values))
+    EXPECT_EQ(k, static_cast<std::int32_t>(ElementKind::nmm));
+  const DataArray* time = data.field_data.find("TimeValue");
+  ASSERT_NE(time, nullptr);
+  EXPECT_EQ(std::get<std::vector<double>>(time->values), std::vector<double>{0.25});
+}
+
+// ---------------------------------------------------------------------------------------
+// Progress
+
+TEST(Progress, TextShowsStepTimeStepContactsAndAnEstimate) {
+  StepReport report;
+  report.step = 50;
+  report.time = 0.05;
+  report.dt = 1e-3;
+  report.open_close_iterations = 3;
+  report.contacts = 12;
+  RunProgress progress;
+  progress.report = &report;
+  progress.steps = 200;
+  progress.end_time = std::numeric_limits<double>::infinity();
+  progress.wall_seconds = 10.0;
+  EXPECT_EQ(progress_text(progress),
+            "step 50/200  t = 0.05 s  dt = 0.001 s  open-close 3  contacts 12  ETA 30 s");
+  // end_time ends the run first: the estimate follows simulated time.
+  progress.end_time = 0.1;
+  EXPECT_NE(progress_text(progress).find("ETA 10 s"), std::string::npos);
+  progress.wall_seconds = 0.0;
+  EXPECT_NE(progress_text(progress).find("ETA ?"), std::string::npos);
+}
+
+TEST(Progress, PlainLinesComeAboutEveryTwoSecondsAndQuietPrintsNothing) {
+  StepReport report;
+  RunProgress progress;
+  progress.report = &report;
+  progress.steps = 10;
+  std::ostringstream lines;
+  ProgressPrinter printer(lines, ProgressMode::lines);
+  for (int k = 0; k < 10; ++k) {
+    report.step = k + 1;
+    progress.wall_seconds = 0.5 * k; // 0 .. 4.5 s
+    printer.step(progress, k == 9);
+  }
+  // At 0, 2 and 4 s, plus the forced last step.
+  const std::string printed = lines.str();
+  EXPECT_EQ(std::count(printed.begin(), printed.end(), '\n'), 4) << printed;
+
+  std::ostringstream nothing;
+  ProgressPrinter quiet(nothing, ProgressMode::quiet);
+  quiet.phase("reading");
+  quiet.warning("w");
+  quiet.step(progress, true);
+  quiet.finish();
+  EXPECT_TRUE(nothing.str().empty());
+
+  std::ostringstream terminal;
+  ProgressPrinter line(terminal, ProgressMode::terminal);
+  line.step(progress, true);
+  line.finish();
+  EXPECT_EQ(terminal.str().front(), '\r');
+  EXPECT_EQ(terminal.str().back(), '\n');
+}
+
+TEST(Progress, ClosingSummarySaysStatusStepsWarningsAndWhereTheOutputsAre) {
+  RunResult result;
+  result.status = RunStatus::interrupted;
+  result.steps = 120;
+  result.time = 0.12;
+  result.wall_seconds = 75.0;
+  result.step_cuts = 1;
+  result.output_dir = "results";
+  result.output_steps = 13;
+  result.warnings = {"case.toml:4: something"};
+  std::ostringstream out;
+  write_closing_summary(out, result, 2000);
+  const std::string text = out.str();
+  for (const char* part : {"interrupted", "120 of 2000 steps", "1 min 15 s", "1 step cut",
+                           "warnings: 1", "case.toml:4: something", "results/case.pvd",
+                           "results/history.csv", "results/summary.json"})
+    EXPECT_NE(text.find(part), std::string::npos) << part << " in\n" << text;
+}
+
+} // namespace
+} // namespace nmm
