@@ -815,6 +815,32 @@ double ContactSystem::max_penetration() const {
   return worst;
 }
 
+std::vector<ContactSystem::Place> ContactSystem::current_places(const Model& model) const {
+  // The boundary numbered as begin_step() numbers it (loop after loop), at its current place.
+  std::vector<Point2> position;
+  std::vector<int> next;
+  for (const BoundaryLoop& loop : model.loops) {
+    const int base = static_cast<int>(position.size());
+    const int n = loop.n_vertices();
+    for (int k = 0; k < n; ++k) {
+      position.push_back(loop.vertices[at(k)]);
+      next.push_back(base + (k + 1) % n);
+    }
+  }
+  NMM_ASSERT(position.size() == boundary_.position.size(), "the boundary changed its vertices");
+  std::vector<Place> result;
+  result.reserve(points_.size());
+  for (const ContactPoint& p : points_) {
+    Place place;
+    place.position = (p.key & 1U) != 0 ? Point2((1.0 - p.u) * position[at(p.slave_edge)] +
+                                                p.u * position[at(next[at(p.slave_edge)])])
+                                       : position[at(p.slave_edge)];
+    place.normal = perp(position[at(next[at(p.master)])] - position[at(p.master)]).normalized();
+    result.push_back(place);
+  }
+  return result;
+}
+
 std::string ContactSystem::describe(int i) const {
   if (points_.empty())
     return "no contact";

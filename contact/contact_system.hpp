@@ -153,6 +153,14 @@ public:
   [[nodiscard]] double max_penetration() const;
   [[nodiscard]] const ContactCounters& counters() const noexcept { return counters_; }
   [[nodiscard]] const ContactOptions& options() const noexcept { return options_; }
+  /// Where a point is now, in the model's current geometry (after the step's move), and the
+  /// outward unit normal of its master edge there.
+  struct Place {
+    Point2 position = Point2::Zero(); ///< the slave material point
+    Point2 normal = Point2::Zero();
+  };
+  /// The Place of every point, for output.
+  [[nodiscard]] std::vector<Place> current_places(const Model& model) const;
   /// A description of point i for messages ("vertex (x, y) against edge (x1, y1)-(x2, y2)").
   [[nodiscard]] std::string describe(int i) const;
   /// The point of the contact that changed last in the open-close iteration (for the message

@@ -60,11 +60,17 @@ constexpr std::string_view joint_keys[] = {"friction_angle", "cohesion", "tensil
 constexpr std::string_view boundary_keys[] = {"curve", "point", "fix", "method"};
 constexpr std::string_view load_keys[] = {"gravity",  "point",    "force", "curve",
                                           "traction", "pressure", "ramp"};
-constexpr std::string_view analysis_keys[] = {"kind",           "steps",
-                                              "time_step",      "max_step_displacement",
-                                              "penalty",        "penalty_stiffness",
-                                              "open_close_max", "solver",
-                                              "max_step_cuts",  "end_time"};
+constexpr std::string_view analysis_keys[] = {"kind",
+                                              "steps",
+                                              "time_step",
+                                              "max_step_displacement",
+                                              "penalty",
+                                              "penalty_stiffness",
+                                              "open_close_max",
+                                              "solver",
+                                              "max_step_cuts",
+                                              "end_time",
+                                              "initial_equilibrium"};
 constexpr std::string_view monitor_keys[] = {"name", "point"};
 constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every"};
 
@@ -341,6 +347,16 @@ public:
                                      int maximum,
                                      std::string_view example) const {
     return static_cast<int>(integer(key, minimum, maximum, example).value_or(fallback));
+  }
+
+  [[nodiscard]] bool boolean_or(std::string_view key, bool fallback) const {
+    const toml::node* node = find(key);
+    if (!node)
+      return fallback;
+    const auto* value = node->as_boolean();
+    if (!value)
+      fail_type(*node, key, "true or false (without quotes)", fallback ? "true" : "false");
+    return value->get();
   }
 
   [[nodiscard]] std::optional<std::string>
@@ -820,6 +836,7 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
   spec.end_time = view.number("end_time", "s", "1.0");
   if (spec.end_time && !(*spec.end_time > 0.0))
     view.fail_range("end_time", *spec.end_time, "the end time must be > 0 (s)");
+  spec.initial_equilibrium = view.boolean_or("initial_equilibrium", false);
   return spec;
 }
 

@@ -160,6 +160,9 @@ struct AnalysisSpec {
   int max_step_cuts = 10;
   /// Stop when this time (s) is reached, even before `steps`; empty: run all steps.
   std::optional<double> end_time;
+  /// Solve the loads at time 0 statically with every touching contact locked before the
+  /// first step (TimeStepper::equilibrate()); displacements count from that state.
+  bool initial_equilibrium = false;
 };
 
 /// `[[monitor]]`: a material point whose history goes to history.csv.

@@ -388,9 +388,11 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
     monitor_starts_.push_back(monitor.point);
   }
 
-  // A static analysis needs every body held (the stepper checks it too, without the line).
+  // A static analysis needs every body held (the stepper checks it too, without the line);
+  // with contact, bodies may rest on each other (Shi's static keeps the inertia term).
   const bool dynamic = spec_.analysis.kind == AnalysisKind::dynamic;
-  if (!dynamic) {
+  const bool touching = ContactSystem::can_touch(model_);
+  if (!dynamic && !touching) {
     std::set<int> held;
     for (const SupportPoint& s : scene.supports)
       held.insert(model_.elements[at(s.point.element)].block);
@@ -418,7 +420,11 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   options.spring_stiffness =
       spec_.analysis.penalty_stiffness.value_or(spec_.analysis.penalty * largest_young);
   options.max_step_cuts = spec_.analysis.max_step_cuts;
-  stepper_ = std::make_unique<TimeStepper>(model_, std::move(scene), options);
+  options.open_close_max = spec_.analysis.open_close_max;
+  std::unique_ptr<ContactSystem> contact;
+  if (touching)
+    contact = make_contact_system(options.spring_stiffness);
+  stepper_ = std::make_unique<TimeStepper>(model_, std::move(scene), options, std::move(contact));
 
   // Initial velocities: each block takes those of its first material.
   if (dynamic) {
@@ -441,6 +447,45 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
 }
 
 CaseAnalysis::~CaseAnalysis() = default;
+
+std::unique_ptr<ContactSystem> CaseAnalysis::make_contact_system(double penalty) const {
+  // Each boundary edge takes the properties of its joint ([joints.NAME]) or [contact]; an
+  // edge pair takes the weaker of its two sides. A joint with cohesion or tensile strength
+  // is intact (bonded) until its strength is exceeded.
+  constexpr double degrees = 3.14159265358979323846 / 180.0;
+  const auto strength_of = [&](const JointProperties& p) {
+    return JointStrength{p.friction_angle_degrees * degrees, p.cohesion, p.tensile_strength};
+  };
+  std::vector<std::vector<JointStrength>> strengths;
+  std::vector<std::vector<bool>> bonded;
+  for (const BoundaryLoop& loop : model_.loops) {
+    std::vector<JointStrength> s;
+    std::vector<bool> b;
+    for (const BoundaryEdge& edge : loop.edges) {
+      const JointProperties* properties = &spec_.contact;
+      for (std::size_t j = 0; j < geometry_.joint_curves.size(); ++j) {
+        if (edge.joint >= 0 && geometry_.joint_curves[j] == edge.joint)
+          properties = &spec_.joints[j].properties;
+      }
+      s.push_back(strength_of(*properties));
+      b.push_back(edge.joint >= 0 &&
+                  (properties->cohesion > 0.0 || properties->tensile_strength > 0.0));
+    }
+    strengths.push_back(std::move(s));
+    bonded.push_back(std::move(b));
+  }
+  ContactOptions options;
+  options.penalty = penalty;
+  options.spring_length = model_.scale;
+  return std::make_unique<ContactSystem>(options, std::move(strengths), std::move(bonded));
+}
+
+void CaseAnalysis::equilibrate() {
+  stepper_->equilibrate();
+  // Displacements count from the settled state.
+  for (std::size_t k = 0; k < monitor_starts_.size(); ++k)
+    monitor_starts_[k] = stepper_->scene().monitors[k].position;
+}
 
 std::vector<MonitorValues> CaseAnalysis::monitor_values() const {
   std::vector<MonitorValues> values;
@@ -544,12 +589,19 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     monitor_names.push_back(m.name);
   HistoryWriter history(dir / "history.csv", monitor_names);
   PvdSeries pvd(dir / "case.pvd");
+  if (spec.analysis.initial_equilibrium && stepper.counters().steps == 0)
+    analysis.equilibrate();
   const std::vector<Point2> initial_points = step_points(model);
   long written = -1;
   const auto write_step = [&](long step) {
     const fs::path file = dir / step_file_name(step);
     write_vtu(file, make_step_data(model, initial_points, stepper.velocity(), stepper.time()));
     pvd.add(stepper.time(), file, 0);
+    if (const ContactSystem* contact = stepper.contact()) {
+      const fs::path contacts = dir / contact_file_name(step);
+      write_vtp_points(contacts, make_contact_data(*contact, model, stepper.time()));
+      pvd.add(stepper.time(), contacts, 1);
+    }
     written = step;
     ++result.output_steps;
   };

@@ -87,8 +87,13 @@ public:
   [[nodiscard]] const std::vector<std::string>& warnings() const noexcept { return warnings_; }
   /// The current values of every monitor (CaseSpec::monitors order).
   [[nodiscard]] std::vector<MonitorValues> monitor_values() const;
+  /// `[analysis] initial_equilibrium`: TimeStepper::equilibrate(), then the monitors count
+  /// their displacement from the settled state. Before the first step.
+  void equilibrate();
 
 private:
+  [[nodiscard]] std::unique_ptr<ContactSystem> make_contact_system(double penalty) const;
+
   CaseSpec spec_;
   CaseGeometry geometry_;
   Model model_;

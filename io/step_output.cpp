@@ -152,6 +152,43 @@ PolygonMeshData make_step_data(const Model& model,
   return data;
 }
 
+PointCloudData make_contact_data(const ContactSystem& contact, const Model& model, double time) {
+  PointCloudData data;
+  const std::vector<ContactSystem::Place> places = contact.current_places(model);
+  const std::vector<ContactPoint>& points = contact.points();
+  std::vector<double> normal_force;
+  std::vector<double> shear_force;
+  std::vector<double> gap;
+  std::vector<std::int32_t> state;
+  std::vector<std::int32_t> bonded;
+  std::vector<Point2> normal;
+  normal_force.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const ContactPoint& p = points[i];
+    data.points.push_back(places[i].position);
+    normal.push_back(places[i].normal);
+    normal_force.push_back(p.normal_force);
+    shear_force.push_back(p.shear_force);
+    gap.push_back(p.gap);
+    state.push_back(static_cast<std::int32_t>(p.mode));
+    bonded.push_back(p.bonded ? 1 : 0);
+  }
+  data.point_data.add("normal_force", std::move(normal_force))
+      .add("shear_force", std::move(shear_force))
+      .add("state", std::move(state))
+      .add("gap", std::move(gap))
+      .add_vectors("normal", normal)
+      .add("bonded", std::move(bonded));
+  data.field_data.add_value("TimeValue", time);
+  return data;
+}
+
+std::string contact_file_name(long step) {
+  char name[40];
+  std::snprintf(name, sizeof name, "contacts_%06ld.vtp", step);
+  return name;
+}
+
 std::string step_file_name(long step) {
   char name[40];
   std::snprintf(name, sizeof name, "step_%06ld.vtu", step);

@@ -3,6 +3,7 @@
 // output step (`step_NNNNNN.vtu`; DESIGN.md "Output", docs/output.md lists every array).
 #pragma once
 
+#include "contact/contact_system.hpp"
 #include "io/vtk_writer.hpp"
 #include "manifold/model.hpp"
 
@@ -55,5 +56,17 @@ struct PrincipalStress {
 
 /// `step_NNNNNN.vtu`: the step number with at least 6 digits.
 [[nodiscard]] std::string step_file_name(long step);
+
+/// The contact points of the last step as a point cloud for write_vtp_points(), at their
+/// current position (the slave material point): point data `normal_force` and
+/// `shear_force` (N per metre of thickness; compressive normal force positive, shear along
+/// the master edge), `state` (Int32: 0 open, 1 slide, 2 lock), `gap` (m, negative:
+/// penetration), `normal` (unit outward normal of the master edge, 3 components), `bonded`
+/// (Int32: 1 for an intact joint); field data `TimeValue` (s).
+[[nodiscard]] PointCloudData
+make_contact_data(const ContactSystem& contact, const Model& model, double time);
+
+/// `contacts_NNNNNN.vtp`: the step number with at least 6 digits.
+[[nodiscard]] std::string contact_file_name(long step);
 
 } // namespace nmm

@@ -225,6 +225,61 @@ TEST_F(Cli, CantileverRunsEndToEndAndEveryOutputReadsBack) {
   EXPECT_EQ(summary.at("counters").at("factorizations").number, 1);
 }
 
+TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
+  // examples/03_block_on_incline end to end: joint and [contact] friction from the case
+  // file, initial equilibrium, contact files in the series. The distance after 1 s is
+  // g (sin 45 - tan 30 cos 45) / 2 = 1.46590 m; tolerance 0.1% (issue 5; the verification
+  // test measures 0.0001% for this case).
+  const fs::path out = dir() / "out";
+  const fs::path incline = fs::path(NMM_EXAMPLES_DIR) / "03_block_on_incline" / "case.toml";
+  const ProcessResult run = nmm({"run", incline.string(), "-o", out.string(), "--quiet"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  expect_all(run.out, {"completed", "warnings: none"});
+
+  const std::string block = "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
+                            "block.syy,block.sxy";
+  const auto rows = read_history(
+      out / "history.csv", "step,time,dt,open_close_iterations,contacts,kinetic_energy," + block);
+  ASSERT_FALSE(rows.empty());
+  const std::vector<double>& last = rows.back();
+  EXPECT_DOUBLE_EQ(last[1], 1.0);
+  const double slid = -(last[8] + last[9]) / std::sqrt(2.0);
+  const double exact = 0.5 * 9.81 * (std::sqrt(0.5) - std::tan(M_PI / 6.0) * std::sqrt(0.5));
+  EXPECT_NEAR(slid, exact, 1e-3 * exact);
+  EXPECT_GT(last[4], 0.0) << "the block is in contact at the end";
+
+  // Every step file has its contact file in the series (part 1), with the arrays of
+  // docs/output.md; the block presses on the ramp with its weight, 1250 kg x 9.81 x cos 45.
+  const std::vector<PvdEntry> series = read_pvd(out / "case.pvd");
+  ASSERT_GE(series.size(), 4u);
+  int contact_files = 0;
+  for (const PvdEntry& entry : series) {
+    if (entry.file.rfind("contacts_", 0) != 0)
+      continue;
+    ++contact_files;
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName((out / entry.file).c_str());
+    reader->Update();
+    vtkPolyData* points = reader->GetOutput();
+    const vtkIdType n = points->GetNumberOfPoints();
+    ASSERT_GT(n, 0) << entry.file;
+    expect_finite_array(points->GetPointData(), "normal_force", 1, n);
+    expect_finite_array(points->GetPointData(), "shear_force", 1, n);
+    expect_finite_array(points->GetPointData(), "state", 1, n);
+    expect_finite_array(points->GetPointData(), "gap", 1, n);
+    expect_finite_array(points->GetPointData(), "normal", 3, n);
+    vtkDataArray* normal = points->GetPointData()->GetArray("normal_force");
+    vtkDataArray* state = points->GetPointData()->GetArray("state");
+    double total = 0.0;
+    for (vtkIdType k = 0; k < n; ++k) {
+      if (state->GetComponent(k, 0) != 0.0)
+        total += normal->GetComponent(k, 0);
+    }
+    EXPECT_NEAR(total, 1250.0 * 9.81 * std::sqrt(0.5), 0.02 * 1250.0 * 9.81) << entry.file;
+  }
+  EXPECT_EQ(2 * contact_files, static_cast<int>(series.size()));
+}
+
 TEST_F(Cli, RunWithoutQuietShowsProgressLinesWhenNotOnATerminal) {
   const ProcessResult run = nmm(
       {"run", (example / "case.toml").string(), "-o", (dir() / "out").string(), "--threads", "1"});

@@ -185,6 +185,7 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_EQ(spec.analysis.solver, LinearSolverKind::cholmod);
   EXPECT_EQ(spec.analysis.max_step_cuts, 10);
   EXPECT_FALSE(spec.analysis.end_time.has_value());
+  EXPECT_FALSE(spec.analysis.initial_equilibrium);
 
   EXPECT_EQ(spec.output.dir, fs::path("out"));
   EXPECT_EQ(spec.output.every, 1);
@@ -313,6 +314,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "[contact]\nfriction_angle = 25\ncohesion = 1e4\ntensile_strength = 5e3\n"
       "[analysis]\nkind = \"dynamic\"\nsteps = 50\npenalty_stiffness = 1e12\nopen_close_max = 20\n"
       "solver = \"pcg\"\nmax_step_cuts = 0\nend_time = 2.5\nmax_step_displacement = 0.5\n"
+      "initial_equilibrium = true\n"
       "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 100\n";
   const CaseSpec spec = parse_case_text(text, "case.toml");
   EXPECT_EQ(spec.title, "Dam on a jointed foundation");
@@ -335,6 +337,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_EQ(spec.analysis.max_step_cuts, 0);
   EXPECT_DOUBLE_EQ(spec.analysis.end_time.value(), 2.5);
   EXPECT_DOUBLE_EQ(spec.analysis.max_step_displacement, 0.5);
+  EXPECT_TRUE(spec.analysis.initial_equilibrium);
   EXPECT_EQ(spec.output.dir, fs::path("/tmp/dam"));
   EXPECT_EQ(spec.output.every, 5);
   EXPECT_EQ(spec.output.checkpoint_every, 100);
@@ -540,6 +543,9 @@ std::vector<BadCase> bad_cases() {
        "solver = \"Cholmod\" is not allowed; did you mean \"cholmod\"?"},
       {"AnalysisKindSuggestion", head + rock + "[analysis]\nkind = \"statics\" # <-\n",
        "did you mean \"static\"?"},
+      {"EquilibriumNotABoolean",
+       head + rock + "[analysis]\nsteps = 1\ninitial_equilibrium = \"yes\" # <-\n",
+       "[analysis] initial_equilibrium must be true or false (without quotes), not a string"},
       {"UnknownModel", head + "[materials.rock]\nmodel = \"abc\" # <-\n",
        "model = \"abc\" is not allowed; use one of \"nmm\", \"dda\", \"vem\""},
       {"FemModelIsNmmOnAConformingMesh", head + "[materials.rock]\nmodel = \"FEM\" # <-\n",
