@@ -50,9 +50,9 @@ TEST(ContactBoundary, AnglesOfCornersStraightPointsAndCrackTips) {
   // A square, a straight point on its edge, and a slit (crack) ending at (0.5, 0.5).
   const ContactBoundary b = boundary_of(
       {{{0, 0}, {0.5, 0}, {1, 0}, {1, 1}, {0, 1}}, {{0.2, 0.5}, {0.5, 0.5}, {0.2, 0.5}}});
-  EXPECT_NEAR(b.angle(0), pi / 2.0, 1e-14);  // convex corner
-  EXPECT_NEAR(b.angle(1), pi, 1e-14);        // straight
-  EXPECT_NEAR(b.angle(6), 2.0 * pi, 1e-14);  // crack tip: the slit turns back
+  EXPECT_NEAR(b.angle(0), pi / 2.0, 1e-14); // convex corner
+  EXPECT_NEAR(b.angle(1), pi, 1e-14);       // straight
+  EXPECT_NEAR(b.angle(6), 2.0 * pi, 1e-14); // crack tip: the slit turns back
   EXPECT_NEAR(b.outward_normal(0).y(), -1.0, 1e-14);
   EXPECT_TRUE(b.adjacent(0, 1));
   EXPECT_FALSE(b.adjacent(0, 2));
@@ -71,13 +71,13 @@ TEST(ContactDetection, FacingEdgesWithinTwiceTheStepDisplacementMakeAnEdgeContac
 TEST(ContactDetection, CornerAgainstAnEdgeIsAnAngleToEdgeContact) {
   // A square standing on its corner 0.005 above a base.
   const double h = std::sqrt(0.5);
-  const ContactBoundary b =
-      boundary_of({square(-2, -1, 4), {{0, 3.005}, {h, 3.005 + h}, {0, 3.005 + 2 * h}, {-h, 3.005 + h}}});
-    // (the base's top edge runs from (2, 3) to (-2, 3))
+  const ContactBoundary b = boundary_of(
+      {square(-2, -1, 4), {{0, 3.005}, {h, 3.005 + h}, {0, 3.005 + 2 * h}, {-h, 3.005 + h}}});
+  // (the base's top edge runs from (2, 3) to (-2, 3))
   const auto contacts = detect_contacts(b, options(0.02), {});
   ASSERT_EQ(contacts.size(), 1U);
   EXPECT_EQ(contacts[0].kind, ContactKind::vertex_edge);
-  EXPECT_EQ(contacts[0].slave, 4); // the lowest corner of the tilted square
+  EXPECT_EQ(contacts[0].slave, 4);  // the lowest corner of the tilted square
   EXPECT_EQ(contacts[0].master, 2); // the base's top edge (from (2, 3) to (-2, 3))
 }
 
@@ -104,12 +104,13 @@ TEST(ContactDetection, TwoConvexCornersTouchThroughOneEntranceLineWithAnAlternat
 
 TEST(ContactDetection, ConvexCornerIntoAReflexCornerHasTwoEntranceLines) {
   // An L-shaped base with a reflex corner at (1, 1), and a square's corner sitting in it.
-  const ContactBoundary b = boundary_of(
-      {{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, square(1.004, 1.003, 0.5)});
+  const ContactBoundary b =
+      boundary_of({{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, square(1.004, 1.003, 0.5)});
   const auto contacts = detect_contacts(b, options(0.02), {});
   int against_reflex = 0;
   for (const ContactCandidate& c : contacts)
-    against_reflex += c.kind == ContactKind::vertex_edge && c.slave == 6 && (c.master == 2 || c.master == 3);
+    against_reflex +=
+        c.kind == ContactKind::vertex_edge && c.slave == 6 && (c.master == 2 || c.master == 3);
   // The square's sides also face the L's sides: those are edge contacts; the corner's own
   // contact goes to both edges of the reflex angle unless the edge contacts cover it.
   EXPECT_EQ(count(contacts, ContactKind::edge_edge) + against_reflex, 2);
