@@ -94,7 +94,12 @@ SolveStatus CholmodSolver::factorize(const SparseMatrix& matrix) {
   impl_->failed_column = -1;
   if (impl_->common.status == CHOLMOD_NOT_POSDEF ||
       (ok != 0 && impl_->factor->minor < impl_->factor->n)) {
-    impl_->failed_column = static_cast<long>(impl_->factor->minor);
+    // minor counts columns of the permuted matrix: map it back to the matrix's own column.
+    const auto minor = static_cast<std::size_t>(impl_->factor->minor);
+    const auto* permutation = static_cast<const int*>(impl_->factor->Perm);
+    impl_->failed_column = permutation != nullptr && minor < impl_->factor->n
+                               ? permutation[minor]
+                               : static_cast<long>(minor);
     return SolveStatus::not_positive_definite;
   }
   if (ok == 0 || impl_->common.status < CHOLMOD_OK)

@@ -21,7 +21,10 @@ struct Expression {
 
 } // namespace
 
-DofMap::DofMap(int n_raw, std::span<const LinearConstraint> constraints, double tolerance)
+DofMap::DofMap(int n_raw,
+               std::span<const LinearConstraint> constraints,
+               double tolerance,
+               double length)
     : reduced_of_(static_cast<std::size_t>(n_raw), 0), slaves_(static_cast<std::size_t>(n_raw)) {
   std::vector<int> slave_of(static_cast<std::size_t>(n_raw), -1);
   std::vector<Expression> expressions;
@@ -58,8 +61,14 @@ DofMap::DofMap(int n_raw, std::span<const LinearConstraint> constraints, double 
         ++it;
       }
     }
+    // A row whose remaining coefficients are all far below its own is numerically a
+    // combination of the rows before it (e.g. one more point of a held straight edge under
+    // order-1 covers, whose coefficients cancel only to rounding): pivoting on what is left
+    // would divide rounding by rounding.
+    if (largest <= 1e-8 * scale)
+      reduced.clear();
     if (reduced.empty()) {
-      if (std::abs(rhs) > tolerance * std::max(std::abs(row.value), 1.0)) {
+      if (std::abs(rhs) > std::max(tolerance * std::abs(row.value), 1e-9 * length)) {
         std::ostringstream message;
         message << "contradictory supports: " << row.origin
                 << " cannot be met together with the supports before it (they leave it " << rhs

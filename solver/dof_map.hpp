@@ -42,8 +42,14 @@ public:
   /// @param constraints  rows in elimination order.
   /// @param tolerance    a reduced coefficient below tolerance × the row's largest original
   ///                     coefficient counts as zero.
+  /// @param length       the model's size (m): redundant rows that disagree by less than
+  ///                     1e-9 of it agree (support points carry the rounding of their moves,
+  ///                     and each row corrects its own point's drift).
   /// @throws InputError when constraints contradict each other (naming both origins).
-  DofMap(int n_raw, std::span<const LinearConstraint> constraints, double tolerance = 1e-12);
+  DofMap(int n_raw,
+         std::span<const LinearConstraint> constraints,
+         double tolerance = 1e-12,
+         double length = 1.0);
 
   [[nodiscard]] int n_raw() const noexcept { return static_cast<int>(reduced_of_.size()); }
   [[nodiscard]] int n_reduced() const noexcept { return n_reduced_; }

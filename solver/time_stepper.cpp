@@ -297,7 +297,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     constraints.insert(constraints.end(), impl_->dependencies.begin(), impl_->dependencies.end());
     const std::vector<LinearConstraint> supports = support_constraints(model_, scene_.supports, t1);
     constraints.insert(constraints.end(), supports.begin(), supports.end());
-    const DofMap map(model_.n_dofs(), constraints);
+    const DofMap map(model_.n_dofs(), constraints, 1e-12, model_size_);
 
     // Reduced unknowns of every coupling: elements, then penalty supports (same unknowns as
     // their element). Only couplings with slaves get a transform.

@@ -60,6 +60,18 @@ TEST(DofMap, RedundantConstraintsAreDroppedAndContradictionsReported) {
   }
 }
 
+TEST(DofMap, RedundantRowsAgreeToTheRoundingOfTheModelsLength) {
+  // Two supports of the same point that correct slightly different drifts (rounding of the
+  // points' moves): a disagreement below 1e-9 of the model size is no contradiction; one of
+  // 1e-6 of it is.
+  const std::vector<LinearConstraint> rows{{{{0, 1.0}, {1, 1.0}}, 0.0, -1, "p"},
+                                           {{{0, 1.0}, {1, 1.0}}, 4e-12, -1, "p again"}};
+  EXPECT_EQ(DofMap(3, rows, 1e-12, 25.0).stats().redundant, 1);
+  const std::vector<LinearConstraint> apart{{{{0, 1.0}, {1, 1.0}}, 0.0, -1, "p"},
+                                            {{{0, 1.0}, {1, 1.0}}, 2.5e-5, -1, "p moved"}};
+  EXPECT_THROW(DofMap(3, apart, 1e-12, 25.0), InputError);
+}
+
 TEST(DofMap, RandomLocalConstraintsHoldExactlyAfterExpansion) {
   // Property: whatever the order and overlap of the rows, every constraint holds for every
   // reduced vector (1e-12: a few eliminations of O(1) coefficients).
