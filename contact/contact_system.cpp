@@ -640,7 +640,13 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         breaks = lead.bonded;
       }
     } else if (motion * lead.slide_sign < 0.0) {
-      after = ContactMode::lock; // the sliding reversed against its friction: sticks
+      // The sliding reversed against its friction: it sticks. Without any friction or
+      // cohesion nothing can hold it: it keeps sliding, the other way (a lock would let go
+      // at once and the two would alternate for ever).
+      if (limit > 0.0 && !hold_shear_)
+        after = ContactMode::lock;
+      else
+        sign = motion > 0.0 ? 1 : -1;
     }
     // Chatter rule (docs/formulation.md): a contact that has switched between open and
     // closed chatter_limit times in the step lifts off whenever it is closed and penetrates
