@@ -58,8 +58,9 @@ constexpr std::string_view material_keys[] = {"model",
                                               "initial_stress"};
 constexpr std::string_view joint_keys[] = {"friction_angle", "cohesion", "tensile_strength"};
 constexpr std::string_view boundary_keys[] = {"curve", "point", "fix", "method"};
-constexpr std::string_view load_keys[] = {"gravity",  "point",    "force", "curve",
-                                          "traction", "pressure", "ramp"};
+constexpr std::string_view load_keys[] = {
+    "gravity",           "point", "force", "curve", "traction", "pressure", "water_level",
+    "water_unit_weight", "ramp"};
 constexpr std::string_view analysis_keys[] = {"kind",
                                               "steps",
                                               "time_step",
@@ -736,12 +737,13 @@ LoadSpec read_load(Context& context, const toml::table& table) {
   };
   if (form == "gravity") {
     spec.kind = LoadKind::gravity;
-    for (const std::string_view key : {"force", "traction", "pressure"})
+    for (const std::string_view key :
+         {"force", "traction", "pressure", "water_level", "water_unit_weight"})
       forbid(key, "a gravity load has only gravity = [gx, gy] and an optional ramp");
     spec.vector = *view.vector<2>("gravity", "m/s^2", "[0.0, -9.81]");
   } else if (form == "point") {
     spec.kind = LoadKind::point;
-    for (const std::string_view key : {"traction", "pressure"})
+    for (const std::string_view key : {"traction", "pressure", "water_level", "water_unit_weight"})
       forbid(key, "a point load has force = [fx, fy] (N); traction and pressure act on a curve");
     spec.target = *view.name_string("point", "Physical Point of the geometry");
     const std::optional<Eigen::Vector2d> force = view.vector<2>("force", "N", "[1.0e4, 0.0]");
@@ -754,21 +756,35 @@ LoadSpec read_load(Context& context, const toml::table& table) {
     spec.target = *view.name_string("curve", "Physical Curve of the geometry");
     const bool has_traction = view.has("traction");
     const bool has_pressure = view.has("pressure");
+    const bool has_water = view.has("water_level");
     if (has_traction && has_pressure)
       view.fail_at_key(view.key_position("pressure") < view.key_position("traction") ? "traction"
                                                                                      : "pressure",
                        "a curve [[load]] has both traction and pressure; write one [[load]] for "
                        "each");
-    if (!has_traction && !has_pressure)
+    if (has_traction && has_water)
+      view.fail_at_key("water_level", "a curve [[load]] has both traction and water_level; water "
+                                      "pushes normal to the curve: write it as its own [[load]]");
+    if (!has_traction && !has_pressure && !has_water)
       context.fail(view.position(), "a [[load]] on curve " + in_quotes(spec.target) +
-                                        " needs traction = [tx, ty] (Pa) or pressure = p (Pa, "
-                                        "positive pushes into the material); add one");
+                                        " needs traction = [tx, ty] (Pa), pressure = p (Pa, "
+                                        "positive pushes into the material) or water_level = y "
+                                        "(m, hydrostatic pressure below it); add one");
+    if (view.has("water_unit_weight") && !has_water)
+      view.fail_at_key("water_unit_weight",
+                       "water_unit_weight goes with water_level (the water surface, m); add "
+                       "water_level = y or remove water_unit_weight");
     if (has_traction) {
       spec.kind = LoadKind::traction;
       spec.vector = *view.vector<2>("traction", "Pa", "[0.0, -1.0e5]");
     } else {
       spec.kind = LoadKind::pressure;
-      spec.pressure = *view.number("pressure", "Pa", "1.0e5");
+      spec.pressure = view.number_or("pressure", 0.0, "Pa", "1.0e5");
+      spec.water_level = view.number("water_level", "m", "15.0");
+      spec.water_unit_weight = view.number_or("water_unit_weight", 9810.0, "N/m^3", "9810.0");
+      if (!(spec.water_unit_weight > 0.0))
+        view.fail_range("water_unit_weight", spec.water_unit_weight,
+                        "the unit weight of water must be > 0 (N/m^3; 9810 for fresh water)");
     }
   }
   if (const std::optional<Eigen::Vector2d> ramp = view.vector<2>("ramp", "s", "[0.0, 1.0]")) {

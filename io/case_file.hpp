@@ -128,6 +128,11 @@ struct LoadSpec {
   Eigen::Vector2d vector = Eigen::Vector2d::Zero();
   /// Pa, positive pushes into the material; kind pressure only.
   double pressure = 0.0;
+  /// Kind pressure: the water surface (m, a y coordinate); below it the pressure grows by
+  /// water_unit_weight per metre of depth (added to `pressure`).
+  std::optional<double> water_level;
+  /// N/m^3.
+  double water_unit_weight = 9810.0;
   /// Ramp (s): zero before ramp_start, linear to full at ramp_end, full after.
   /// Both 0 (the default) mean full from t = 0.
   double ramp_start = 0.0;

@@ -370,6 +370,14 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
       curve_load.traction = load.vector;
       curve_load.pressure = load.pressure;
       curve_load.ramp = ramp_of(load);
+      if (load.water_level) {
+        // Hydrostatic: gamma (level - y) below the water surface, at the current position.
+        const double level = *load.water_level;
+        const double gamma = load.water_unit_weight;
+        curve_load.pressure_at = [level, gamma](const Point2& x) {
+          return gamma * std::max(0.0, level - x.y());
+        };
+      }
       scene.curve_loads.push_back(curve_load);
       break;
     }

@@ -299,9 +299,26 @@ TEST(CaseFile, CurveLoadsAndRamps) {
   EXPECT_EQ(spec.loads[1].kind, LoadKind::pressure);
   EXPECT_DOUBLE_EQ(spec.loads[1].pressure, 2e5);
   EXPECT_TRUE(spec.loads[1].vector.isZero());
+  EXPECT_FALSE(spec.loads[1].water_level.has_value());
   // A ramp with t0 == t1 is a step at t0.
   EXPECT_DOUBLE_EQ(spec.loads[2].factor_at(1.999), 0.0);
   EXPECT_DOUBLE_EQ(spec.loads[2].factor_at(2.0), 1.0);
+}
+
+TEST(CaseFile, WaterLevelIsAHydrostaticPressure) {
+  const CaseSpec spec = parse_case_text(
+      minimal + "[[load]]\ncurve = \"face\"\nwater_level = 15.0\n"
+                "[[load]]\ncurve = \"face\"\nwater_level = 3\nwater_unit_weight = 1.0e4\n"
+                "pressure = 5.0\n",
+      "case.toml");
+  ASSERT_EQ(spec.loads.size(), 2u);
+  EXPECT_EQ(spec.loads[0].kind, LoadKind::pressure);
+  EXPECT_DOUBLE_EQ(spec.loads[0].water_level.value(), 15.0);
+  EXPECT_DOUBLE_EQ(spec.loads[0].water_unit_weight, 9810.0);
+  EXPECT_DOUBLE_EQ(spec.loads[0].pressure, 0.0);
+  EXPECT_DOUBLE_EQ(spec.loads[1].water_level.value(), 3.0);
+  EXPECT_DOUBLE_EQ(spec.loads[1].water_unit_weight, 1.0e4);
+  EXPECT_DOUBLE_EQ(spec.loads[1].pressure, 5.0);
 }
 
 TEST(CaseFile, EveryExtensionKeyIsRead) {
@@ -407,9 +424,11 @@ TEST(CaseFile, ExamplesOfTheReferencePageAreValid) {
   const CaseSpec full = parse_case_text(blocks[0], "case.toml");
   EXPECT_EQ(full.materials.size(), 2u);
   EXPECT_EQ(full.boundaries.size(), 2u);
-  EXPECT_EQ(full.loads.size(), 4u);
+    EXPECT_EQ(full.loads.size(), 5u);
   EXPECT_EQ(full.loads[3].kind, LoadKind::pressure);
   EXPECT_DOUBLE_EQ(full.loads[3].factor_at(1.5), 0.5);
+  EXPECT_DOUBLE_EQ(full.loads[4].water_level.value(), 40.0);
+  EXPECT_TRUE(full.analysis.initial_equilibrium == false);
   EXPECT_EQ(full.materials[1].plane, PlaneCondition::stress);
   EXPECT_DOUBLE_EQ(full.materials[1].thickness, 0.3);
   EXPECT_DOUBLE_EQ(full.analysis.end_time.value(), 2.0);
@@ -543,6 +562,14 @@ std::vector<BadCase> bad_cases() {
        "solver = \"Cholmod\" is not allowed; did you mean \"cholmod\"?"},
       {"AnalysisKindSuggestion", head + rock + "[analysis]\nkind = \"statics\" # <-\n",
        "did you mean \"static\"?"},
+      {"WaterUnitWeightWithoutLevel",
+       head + rock + "[[load]]\ncurve = \"face\"\npressure = 1.0\nwater_unit_weight = 1.0 # <-\n",
+       "water_unit_weight goes with water_level"},
+      {"WaterOnATraction",
+       head + rock + "[[load]]\ncurve = \"face\"\ntraction = [1.0, 0.0]\nwater_level = 1.0 # <-\n",
+       "has both traction and water_level"},
+      {"WaterOnGravity", head + rock + "[[load]]\ngravity = [0.0, -9.81]\nwater_level = 1.0 # <-\n",
+       "a [[load]] with gravity takes no water_level"},
       {"EquilibriumNotABoolean",
        head + rock + "[analysis]\nsteps = 1\ninitial_equilibrium = \"yes\" # <-\n",
        "[analysis] initial_equilibrium must be true or false (without quotes), not a string"},
