@@ -184,7 +184,10 @@ bool ContactSystem::can_touch(const Model& model) {
 double ContactSystem::projection(int master, const Point2& x) const {
   const Point2& a = boundary_.position[at(master)];
   const Point2 edge = boundary_.position[at(boundary_.next[at(master)])] - a;
-  return std::clamp((x - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+  // Not clamped to the edge: a slave that has moved past the end of its master edge within
+  // the step keeps its true offset (a clamped anchor would load the shear spring with a
+  // displacement that never happened).
+  return (x - a).dot(edge) / edge.squaredNorm();
 }
 
 template <class AnchorOf>
@@ -243,6 +246,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   DetectionOptions detection = options_.detection;
   detection.distance = 2.0 * max_step_displacement;
   detection.penetration = 0.1 * detection.distance;
+  held_open_penetration_ = 1e-3 * max_step_displacement;
   std::vector<std::uint64_t> keep;
   keep.reserve(carried_.size());
   for (const auto& [key, state] : carried_)
@@ -389,6 +393,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       point.mode = mode;
       point.slide_sign = sign;
       point.flips = 0;
+      point.slips = 0;
       point.normal_force = total > 0.0 ? normal_force * point.stiffness / total : 0.0;
       point.shear_force = 0.0;
       point.gap = 0.0;
@@ -634,7 +639,13 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       after = ContactMode::open; // lifted off, or tension beyond the strength of a bond
       breaks = lead.bonded;
     } else if (before == ContactMode::lock) {
-      if (std::abs(shear) > limit && !hold_shear_) {
+      // A contact that has switched between lock and slide chatter_limit times in the step
+      // sits at the limit of friction (locked it needs more than friction, sliding it turns
+      // back against it): it stays locked for the rest of the step (a held slide could push
+      // along its motion and feed energy in; a lock only holds).
+      if (std::abs(shear) > limit && lead.slips >= options_.chatter_limit && !hold_shear_) {
+        ++counters_.chatter_holds;
+      } else if (std::abs(shear) > limit && !hold_shear_) {
         after = ContactMode::slide;
         sign = shear > 0.0 ? 1 : -1;
         breaks = lead.bonded;
@@ -651,8 +662,11 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     // Chatter rule (docs/formulation.md): a contact that has switched between open and
     // closed chatter_limit times in the step lifts off whenever it is closed and penetrates
     // whenever it is open: the force it can carry is nil. It stays open for the rest of the
-    // step (its small penetration is reported, and it is kept for the next step).
-    if (!closed(before) && closed(after) && lead.flips >= options_.chatter_limit) {
+    // step (its small penetration is reported, and it is kept for the next step), unless it
+    // penetrates by more than 1e-3 of the largest step displacement: then it is no near-zero
+    // contact, it closes, and a step that cannot settle is cut.
+    if (!closed(before) && closed(after) && lead.flips >= options_.chatter_limit &&
+        deepest <= held_open_penetration_) {
       after = ContactMode::open;
       ++counters_.chatter_holds;
     }
@@ -668,9 +682,9 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         // fraction t0 of the step's tangential motion along the edge.
         const Kinematics k = kinematics(model, p, false);
         const double t0 = k.g0 > 0.0 ? std::clamp(k.g0 / (k.g0 - m.gap), 0.0, 1.0) : 0.0;
-        p.anchor = std::clamp(projection(p.master, p.slave) + t0 * m.ds / length, 0.0, 1.0);
+        p.anchor = projection(p.master, p.slave) + t0 * m.ds / length;
       } else if (before == ContactMode::slide && after == ContactMode::lock) {
-        p.anchor = std::clamp(p.anchor + m.shear / length, 0.0, 1.0); // relocks here
+        p.anchor += m.shear / length; // relocks where it is
       }
       p.mode = after;
       p.slide_sign = sign;
@@ -680,6 +694,8 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       }
       if (flip)
         ++p.flips;
+      if (closed(before) && closed(after) && before != after)
+        ++p.slips;
     }
     if (breaks)
       ++counters_.bonds_broken;
@@ -799,7 +815,7 @@ void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
         const double l = (boundary_.position[at(boundary_.next[at(p.master)])] -
                           boundary_.position[at(p.master)])
                              .norm();
-        anchor = std::clamp(p.anchor + (k.s0 + k.tangential(raw)) / l, 0.0, 1.0);
+        anchor = p.anchor + (k.s0 + k.tangential(raw)) / l;
       }
       state.anchors.emplace_back(p.u, anchor);
     }

@@ -38,7 +38,8 @@ struct ContactOptions {
   /// Contact detection criteria (the distance is set every step from the step displacement).
   DetectionOptions detection;
   /// A contact that has switched between open and closed this many times within a step
-  /// stays open for the rest of it: the chatter rule (docs/formulation.md).
+  /// stays open for the rest of it; one that has switched between lock and slide this many
+  /// times stays locked: the chatter rule (docs/formulation.md).
   int chatter_limit = 3;
   /// Friction is a load computed from the normal forces of the last iteration (so that the
   /// matrix stays symmetric); the iteration continues until the work of the friction change
@@ -73,12 +74,14 @@ struct ContactPoint {
   JointStrength strength; ///< of the pair (the weaker of the two sides)
   bool bonded = false;    ///< intact joint: holds tension and cohesion until it breaks
   ContactMode mode = ContactMode::open;
-  /// Contact position on the master edge (parameter in [0, 1]) where the shear spring of a
+  /// Contact position on the master edge's line (parameter: 0 at its first vertex, 1 at the
+  /// next; beyond them when the slave has moved past an end) where the shear spring of a
   /// locked contact is anchored (Shi 3.5, P0), carried to the next step.
   double anchor = 0.0;
   /// Sliding direction along the master edge (+1, -1).
   int slide_sign = 0;
   int flips = 0;             ///< open/closed switches in this step (chatter rule)
+  int slips = 0;             ///< lock/slide switches in this step (chatter rule)
   double normal_force = 0.0; ///< compressive positive, N
   double shear_force = 0.0;  ///< along the master edge, N
   double gap = 0.0;          ///< normal gap at the end of the last solve (negative: penetration)
@@ -231,6 +234,7 @@ private:
   std::unordered_map<std::uint64_t, bool> broken_;
   int last_changed_ = 0;
   bool hold_shear_ = false;
+  double held_open_penetration_ = 0.0; ///< deepest a contact held open may penetrate, m
   ContactCounters counters_;
 };
 

@@ -424,7 +424,7 @@ TEST(CaseFile, ExamplesOfTheReferencePageAreValid) {
   const CaseSpec full = parse_case_text(blocks[0], "case.toml");
   EXPECT_EQ(full.materials.size(), 2u);
   EXPECT_EQ(full.boundaries.size(), 2u);
-    EXPECT_EQ(full.loads.size(), 5u);
+  EXPECT_EQ(full.loads.size(), 5u);
   EXPECT_EQ(full.loads[3].kind, LoadKind::pressure);
   EXPECT_DOUBLE_EQ(full.loads[3].factor_at(1.5), 0.5);
   EXPECT_DOUBLE_EQ(full.loads[4].water_level.value(), 40.0);
