@@ -22,6 +22,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -1098,6 +1099,8 @@ private:
       BoundaryLoop loop;
       loop.block = face_block_[to_index(face_of_halfedge(global.front()))];
       const int index = result_.n_loops();
+      // End of the last piece kept: the next piece must start there.
+      std::optional<Point2> previous_end;
       for (const int id : global) {
         const std::vector<SidePiece> pieces = side_pieces(id);
         NMM_ASSERT(!pieces.empty(), "a boundary halfedge has no pieces");
@@ -1106,9 +1109,8 @@ private:
           // Pieces between exact points closer than rounding vanish: no zero-length edges.
           if (piece.a == piece.b)
             continue;
-          NMM_ASSERT(loop.vertices.empty() || piece.a == loop.vertices.back() ||
-                         loop.edges.size() != loop.vertices.size(),
-                     "boundary pieces do not chain");
+          NMM_ASSERT(!previous_end || piece.a == *previous_end, "boundary pieces do not chain");
+          previous_end = piece.b;
           where[{id, piece.a.x(), piece.a.y(), piece.b.x(), piece.b.y()}] = {index,
                                                                              loop.n_vertices()};
           loop.vertices.push_back(piece.a);
@@ -1120,6 +1122,7 @@ private:
       }
       if (loop.vertices.size() < 2)
         continue; // a loop thinner than rounding (a crack of zero rounded length)
+      NMM_ASSERT(previous_end == loop.vertices.front(), "a boundary loop does not close");
       result_.blocks[to_index(loop.block)].loops.push_back(index);
       result_.loops.push_back(std::move(loop));
     }
