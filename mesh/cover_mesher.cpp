@@ -435,8 +435,9 @@ private:
         }
       });
     }
+    // A face still unlabelled is bounded only by region loop edges whose region lies on
+    // their other side (a hole with nothing inside): it is outside every region.
     for (auto f = arrangement_.faces_begin(); f != arrangement_.faces_end(); ++f) {
-      NMM_ASSERT(f->data().material != -2, "a face of the physical arrangement has no label");
       if (f->data().material == -2)
         f->data().material = -1;
     }
