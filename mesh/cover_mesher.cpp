@@ -827,9 +827,12 @@ private:
                                        });
       NMM_ASSERT(it != queries.end() && it->first == point, "located point not found");
       const auto* face = boost::get<PhysicalArrangement::Face_const_handle>(&where);
-      NMM_ASSERT(face != nullptr, "a whole-triangle centroid lies on a physical edge");
       Atom& atom = atoms_[to_index(it->second)];
       if (face == nullptr) {
+        // Only edges bordering NMM material cut triangles, so the centroid may lie on any
+        // other edge or vertex (a joint inside a dda/vem region, its boundary with void).
+        NMM_ASSERT(!borders_nmm_material(where), "a whole-triangle centroid lies on an edge "
+                                                 "bordering NMM material");
         atom.material = -1;
         continue;
       }
@@ -837,6 +840,26 @@ private:
       atom.material = is_nmm_material(material) ? material : -1;
       atom.face = (*face)->data().index;
     }
+  }
+
+  /// Whether a located edge or vertex of the global arrangement borders NMM material.
+  template <class Location> bool borders_nmm_material(const Location& where) const {
+    if (const auto* h = boost::get<PhysicalArrangement::Halfedge_const_handle>(&where)) {
+      return is_nmm_material((*h)->face()->data().material) ||
+             is_nmm_material((*h)->twin()->face()->data().material);
+    }
+    if (const auto* v = boost::get<PhysicalArrangement::Vertex_const_handle>(&where)) {
+      if ((*v)->is_isolated())
+        return is_nmm_material((*v)->face()->data().material);
+      auto h = (*v)->incident_halfedges();
+      const auto first = h;
+      do {
+        if (is_nmm_material(h->face()->data().material) ||
+            is_nmm_material(h->twin()->face()->data().material))
+          return true;
+      } while (++h != first);
+    }
+    return false;
   }
 
   // ---- 3. covers and elements ---------------------------------------------------------
