@@ -330,11 +330,12 @@ public:
     start = Clock::now();
     build_covers();
     build_elements();
+    // Before the loops: material outside the math mesh leaves boundary edges without pieces.
+    check_area();
     assign_extension_elements();
     build_block_records();
     build_loops();
     build_curve_pieces();
-    check_area();
     report_unused_joints();
     result_.stats.seconds_rest = seconds_since(start);
     result_.stats.math_triangles = math_.n_triangles();
