@@ -22,6 +22,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -329,11 +330,12 @@ public:
     start = Clock::now();
     build_covers();
     build_elements();
+    // Before the loops: material outside the math mesh leaves boundary edges without pieces.
+    check_area();
     assign_extension_elements();
     build_block_records();
     build_loops();
     build_curve_pieces();
-    check_area();
     report_unused_joints();
     result_.stats.seconds_rest = seconds_since(start);
     result_.stats.math_triangles = math_.n_triangles();
@@ -434,8 +436,9 @@ private:
         }
       });
     }
+    // A face still unlabelled is bounded only by region loop edges whose region lies on
+    // their other side (a hole with nothing inside): it is outside every region.
     for (auto f = arrangement_.faces_begin(); f != arrangement_.faces_end(); ++f) {
-      NMM_ASSERT(f->data().material != -2, "a face of the physical arrangement has no label");
       if (f->data().material == -2)
         f->data().material = -1;
     }
@@ -825,9 +828,12 @@ private:
                                        });
       NMM_ASSERT(it != queries.end() && it->first == point, "located point not found");
       const auto* face = boost::get<PhysicalArrangement::Face_const_handle>(&where);
-      NMM_ASSERT(face != nullptr, "a whole-triangle centroid lies on a physical edge");
       Atom& atom = atoms_[to_index(it->second)];
       if (face == nullptr) {
+        // Only edges bordering NMM material cut triangles, so the centroid may lie on any
+        // other edge or vertex (a joint inside a dda/vem region, its boundary with void).
+        NMM_ASSERT(!borders_nmm_material(where), "a whole-triangle centroid lies on an edge "
+                                                 "bordering NMM material");
         atom.material = -1;
         continue;
       }
@@ -835,6 +841,26 @@ private:
       atom.material = is_nmm_material(material) ? material : -1;
       atom.face = (*face)->data().index;
     }
+  }
+
+  /// Whether a located edge or vertex of the global arrangement borders NMM material.
+  template <class Location> bool borders_nmm_material(const Location& where) const {
+    if (const auto* h = boost::get<PhysicalArrangement::Halfedge_const_handle>(&where)) {
+      return is_nmm_material((*h)->face()->data().material) ||
+             is_nmm_material((*h)->twin()->face()->data().material);
+    }
+    if (const auto* v = boost::get<PhysicalArrangement::Vertex_const_handle>(&where)) {
+      if ((*v)->is_isolated())
+        return is_nmm_material((*v)->face()->data().material);
+      auto h = (*v)->incident_halfedges();
+      const auto first = h;
+      do {
+        if (is_nmm_material(h->face()->data().material) ||
+            is_nmm_material(h->twin()->face()->data().material))
+          return true;
+      } while (++h != first);
+    }
+    return false;
   }
 
   // ---- 3. covers and elements ---------------------------------------------------------
@@ -1098,6 +1124,8 @@ private:
       BoundaryLoop loop;
       loop.block = face_block_[to_index(face_of_halfedge(global.front()))];
       const int index = result_.n_loops();
+      // End of the last piece kept: the next piece must start there.
+      std::optional<Point2> previous_end;
       for (const int id : global) {
         const std::vector<SidePiece> pieces = side_pieces(id);
         NMM_ASSERT(!pieces.empty(), "a boundary halfedge has no pieces");
@@ -1106,9 +1134,8 @@ private:
           // Pieces between exact points closer than rounding vanish: no zero-length edges.
           if (piece.a == piece.b)
             continue;
-          NMM_ASSERT(loop.vertices.empty() || piece.a == loop.vertices.back() ||
-                         loop.edges.size() != loop.vertices.size(),
-                     "boundary pieces do not chain");
+          NMM_ASSERT(!previous_end || piece.a == *previous_end, "boundary pieces do not chain");
+          previous_end = piece.b;
           where[{id, piece.a.x(), piece.a.y(), piece.b.x(), piece.b.y()}] = {index,
                                                                              loop.n_vertices()};
           loop.vertices.push_back(piece.a);
@@ -1120,6 +1147,7 @@ private:
       }
       if (loop.vertices.size() < 2)
         continue; // a loop thinner than rounding (a crack of zero rounded length)
+      NMM_ASSERT(previous_end == loop.vertices.front(), "a boundary loop does not close");
       result_.blocks[to_index(loop.block)].loops.push_back(index);
       result_.loops.push_back(std::move(loop));
     }
