@@ -110,6 +110,28 @@ singular_message(const Model& model, const DofMap& map, long column, SolveStatus
   return message.str();
 }
 
+/// Why a dynamic step is refused by the energy check, naming the fastest cover.
+std::string energy_message(
+    const Model& model, const Eigen::VectorXd& velocity, long step, double kinetic, double budget) {
+  int fastest = 0;
+  double speed = 0.0;
+  for (int c = 0; c < model.n_covers(); ++c) {
+    const double v = Point2(velocity(model.dof(c, 0)), velocity(model.dof(c, 1))).norm();
+    if (v > speed) {
+      speed = v;
+      fastest = c;
+    }
+  }
+  std::ostringstream message;
+  message << "step " << step << ": the kinetic energy (" << kinetic
+          << " J) exceeds ten times what the run started with plus the work of the loads ("
+          << budget << " J), even with the time step cut; the fastest cover (" << speed
+          << " m/s) is near " << point_text(model.covers[at(fastest)].position)
+          << ": energy is coming from the contact springs there; try a smaller time_step or "
+             "max_step_displacement, a smaller penalty, or a larger cover size near that point";
+  return message.str();
+}
+
 } // namespace
 
 struct TimeStepper::Impl {
@@ -121,6 +143,10 @@ struct TimeStepper::Impl {
   /// Scalar consistent mass of every element (n x n each, times density and thickness, one
   /// after the other), kept from the assembly for the kinetic energy of the new velocities.
   std::vector<double> element_mass;
+  /// Kinetic energy at the first dynamic step plus the work of the loads since: the most
+  /// kinetic energy the run can have (the energy check), J.
+  double energy_budget = 0.0;
+  bool energy_started = false;
   /// Reduced unknowns of every coupling (elements, then penalty springs), flat, with their
   /// starts: the pattern of the last build, compared to the next step's.
   std::vector<int> coupling_start;
@@ -240,6 +266,26 @@ StepReport TimeStepper::equilibrate() {
                          " (the initial equilibrium needs every body held by supports or by "
                          "contacts that touch)");
   }
+}
+
+double TimeStepper::kinetic_energy(const Eigen::VectorXd& velocity) const {
+  if (impl_->element_mass.empty())
+    return 0.0;
+  double kinetic = 0.0;
+  const int n = 3 * cover_basis_size(model_.order);
+  for (int e = 0; e < model_.n_elements(); ++e) {
+    const Eigen::Map<const Eigen::MatrixXd> mass(
+        impl_->element_mass.data() + static_cast<std::ptrdiff_t>(e) * n * n, n, n);
+    const ElementDofs dofs = model_.element_dofs(e);
+    ShapeVector u(n);
+    ShapeVector v(n);
+    for (int i = 0; i < n; ++i) {
+      u(i) = velocity(dofs(2 * i));
+      v(i) = velocity(dofs(2 * i + 1));
+    }
+    kinetic += 0.5 * (u.dot(mass * u) + v.dot(mass * v));
+  }
+  return kinetic;
 }
 
 StepReport TimeStepper::advance(double until, bool equilibrium) {
@@ -376,6 +422,9 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     for (const CurveLoad& load : scene_.curve_loads)
       add_curve_load(model_, load, t1, f);
 
+    // The loads alone (point and curve loads, body forces, initial stresses; not the inertia
+    // load) do the work of the energy check.
+    Eigen::VectorXd loads = f;
     // One pass over the elements: one set of moments gives stiffness, mass, inertia load,
     // body forces and the initial-stress load.
     Eigen::VectorXd rhs_correction = Eigen::VectorXd::Zero(map.n_reduced());
@@ -405,8 +454,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       ElementMatrix local =
           integrals.stiffness(elasticity_matrix(material), material.thickness_factor());
       const ElementVector load = element_load(model_, e, integrals, scene_.body_loads, t1);
-      for (Eigen::Index i = 0; i < dofs.size(); ++i)
+      for (Eigen::Index i = 0; i < dofs.size(); ++i) {
         f(dofs(i)) += load(i);
+        loads(dofs(i)) += load(i);
+      }
       if (with_mass) {
         // Mass on u and v alike; inertia load 2 M v0 / dt (Shi eq. 2.22-2.23).
         const ShapeMatrix mass =
@@ -553,6 +604,34 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         warnings_.push_back(w.str());
       }
     }
+    if (dynamic) {
+      // Energy check: the kinetic energy can never exceed what the run started with plus the
+      // work the loads have done (initial stresses included: their release is that work);
+      // elastic and contact springs only store it, friction only dissipates it. A step that
+      // ends above ten times that budget gained energy from nowhere (contact springs pushed
+      // through a penetration they never had): it is cut, and the run stops if cutting
+      // cannot cure it, rather than carry on with a meaningless answer.
+      if (!impl_->energy_started) {
+        impl_->energy_budget += kinetic_energy(velocity_);
+        impl_->energy_started = true;
+      }
+      const double work = loads.dot(raw);
+      const Eigen::VectorXd v = (2.0 / dt) * raw - velocity_;
+      const double kinetic = kinetic_energy(v);
+      const double budget = std::max(impl_->energy_budget + work, 0.0);
+      if (kinetic > 10.0 * budget + std::numeric_limits<double>::min()) {
+        if (cut < options_.max_step_cuts) {
+          dt /= 3.0;
+          ++report.step_cuts;
+          ++counters_.step_cuts;
+          continue;
+        }
+        throw NumericalError(energy_message(model_, v, step_ + 1, kinetic, budget));
+      }
+      impl_->energy_budget += work;
+    } else {
+      impl_->energy_budget += loads.dot(raw);
+    }
     break;
   }
 
@@ -597,22 +676,9 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   report.dt = dt;
 
   // Kinetic energy 1/2 v^T M v of the new velocities with the step's element masses.
-  double kinetic = 0.0;
-  if (options_.integration == TimeIntegration::dynamic && !equilibrium) {
-    const int n = 3 * cover_basis_size(model_.order);
-    for (int e = 0; e < model_.n_elements(); ++e) {
-      const Eigen::Map<const Eigen::MatrixXd> mass(
-          impl_->element_mass.data() + static_cast<std::ptrdiff_t>(e) * n * n, n, n);
-      const ElementDofs dofs = model_.element_dofs(e);
-      ShapeVector u(n);
-      ShapeVector v(n);
-      for (int i = 0; i < n; ++i) {
-        u(i) = velocity_(dofs(2 * i));
-        v(i) = velocity_(dofs(2 * i + 1));
-      }
-      kinetic += 0.5 * (u.dot(mass * u) + v.dot(mass * v));
-    }
-  }
+  const double kinetic = options_.integration == TimeIntegration::dynamic && !equilibrium
+                             ? kinetic_energy(velocity_)
+                             : 0.0;
   report.kinetic_energy = kinetic;
   lap(update_clock, counters_.seconds_update);
   return report;

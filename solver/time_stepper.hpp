@@ -143,6 +143,8 @@ public:
 private:
   struct Impl;
   StepReport advance(double until, bool equilibrium);
+  /// 1/2 v^T M v with the element masses of the last assembly, J.
+  double kinetic_energy(const Eigen::VectorXd& velocity) const;
   Model& model_;
   Scene scene_;
   StepperOptions options_;

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Verification against closed forms: patch test, FEM equivalence, free fall (issue 4).
+#include "mesh/error.hpp"
+
 #include "verification_support.hpp"
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
@@ -224,6 +226,35 @@ TEST_P(FreeFall, IsExactAfterOneSecond) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Orders, FreeFall, ::testing::Values(0, 1));
+
+TEST(EnergyCheck, StopsARunWhoseKineticEnergyComesFromNowhere) {
+  // A free block, no loads: its kinetic energy is what it starts with, for ever. Started at
+  // 2 m/s it keeps that energy (the check must not trip on a run that conserves energy);
+  // given 20 m/s behind the stepper's back after the first step (as a contact spring that
+  // pushes through a penetration it never had would), the next step has 100 times the
+  // energy the run started with and no load did work for it: no cut can cure that, so the
+  // step is refused with the fastest cover named (10x the budget is the check's margin).
+  const ElasticMaterial material = elastic(5.0e9, 0.25, 2600.0, PlaneCondition::strain);
+  testing::Setup s =
+      make_setup({rectangle("block", 0.0, 0.0, 1.0, 0.5)}, {}, {}, nullptr, 0.21, material, 0);
+  StepperOptions options;
+  options.time_step = 1e-3;
+  TimeStepper stepper(s.model, Scene{}, options);
+  stepper.set_rigid_velocities({Point2(2.0, 0.0)}, {0.0});
+  StepReport first;
+  for (int i = 0; i < 10; ++i)
+    first = stepper.step(1.0);
+  const double kinetic = 0.5 * material.density * 0.5 * 4.0;
+  EXPECT_NEAR(first.kinetic_energy, kinetic, 1e-9 * kinetic);
+  stepper.set_rigid_velocities({Point2(20.0, 0.0)}, {0.0});
+  try {
+    (void)stepper.step(1.0);
+    ADD_FAILURE() << "a step with 100 times the energy of the run was accepted";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("kinetic energy"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fastest cover (20 m/s)"), std::string::npos) << e.what();
+  }
+}
 
 } // namespace
 } // namespace nmm
