@@ -22,7 +22,7 @@
 //
 //   bench_contact [--edges 1e2,1e3,1e4,1e5] [--steps 10] [--limit 0.01 | --g2 F]
 //                 [--bond running|stack] [--wall COURSESxBRICKS,...] [--detect-only]
-//                 [--verbose]
+//                 [--run-distance-only] [--verbose]
 //     --steps    measured steps (half of them from 5e3 edges, a fifth from 5e4)
 //     --limit    max step displacement in m, the same for every wall (default 0.01 m: the
 //                detection distance is 0.02 m, 4 % of a brick's height), or
@@ -30,6 +30,9 @@
 //                file's default is 0.01, so the distance grows with the model)
 //     --wall     explicit walls instead of --edges (e.g. 3x2: three courses of two bricks)
 //     --detect-only  mesh each wall and time detect_contacts() alone (no steps)
+//     --run-distance-only  skip detect_contacts() at the case-file default distance (whose
+//                broad-phase pairs grow as ~n^2 on these walls: the slowest part of a
+//                --detect-only run at 1e5 edges)
 //     --verbose  one line per step: iterations, cuts, modes, the contact that changed last
 #include "contact/contact_system.hpp"
 #include "contact/detection.hpp"
@@ -73,6 +76,7 @@ struct Settings {
   double g2 = 0.0;     ///< max step displacement / model size
   bool stack_bond = false;
   bool detect_only = false;
+  bool default_distance = true; ///< also time detect_contacts() at 0.02 x model size
   bool verbose = false;
 };
 
@@ -165,6 +169,7 @@ double load_average() {
 }
 
 struct Detection {
+  bool measured = false;
   double distance = 0.0;
   double seconds = 0.0; ///< best of several runs
   nmm::DetectionStats stats;
@@ -197,8 +202,11 @@ struct Row {
   double assembly = 0.0; // constraints + assembly
   double update = 0.0;
   double step = 0.0;
-  Detection run_distance;     // detect_contacts alone at the run's distance
-  Detection default_distance; // ... at 0.02 x model size
+  double penetration = 0.0;          // largest penetration of a closed contact over the steps, m
+  long chatter_holds = 0;            // over the measured steps
+  std::vector<std::string> warnings; // the stepper's
+  Detection run_distance;            // detect_contacts alone at the run's distance
+  Detection default_distance;        // ... at 0.02 x model size
 };
 
 Detection time_detection(const nmm::ContactBoundary& boundary,
@@ -206,6 +214,7 @@ Detection time_detection(const nmm::ContactBoundary& boundary,
                          double distance,
                          int repeats) {
   Detection d;
+  d.measured = true;
   d.distance = distance;
   nmm::DetectionOptions options;
   options.distance = distance;
@@ -256,6 +265,7 @@ Row run_wall(int courses, int bricks, int steps, const Settings& settings) {
     row.steps = steps;
     const nmm::StepperCounters c0 = stepper.counters();
     const nmm::SolverCounters s0 = stepper.solver_counters();
+    const long holds0 = stepper.contact()->counters().chatter_holds;
     for (int i = 0; i < steps; ++i) {
       nmm::ContactSystem copy = *stepper.contact();
       t = Clock::now();
@@ -268,16 +278,17 @@ Row run_wall(int courses, int bricks, int steps, const Settings& settings) {
       row.iterations += report.open_close_iterations;
       row.cuts += report.step_cuts;
       row.closed += report.contacts;
+      row.penetration = std::max(row.penetration, stepper.contact_penetration());
       if (settings.verbose) {
         int modes[3] = {0, 0, 0};
         for (const nmm::ContactPoint& p : stepper.contact()->points())
           ++modes[static_cast<int>(p.mode)];
         std::printf("  step %ld: dt %.3g s, %d iterations, %d cuts, %ld factorisations so "
-                    "far; open %d, slide %d, lock %d; kinetic energy %.3g J; changed last: "
-                    "%s\n",
+                    "far; open %d, slide %d, lock %d; kinetic energy %.3g J; max penetration "
+                    "%.3g m; changed last: %s\n",
                     report.step, report.dt, report.open_close_iterations, report.step_cuts,
                     stepper.solver_counters().factorizations, modes[0], modes[1], modes[2],
-                    report.kinetic_energy,
+                    report.kinetic_energy, stepper.contact_penetration(),
                     stepper.contact()->describe(stepper.contact()->last_changed()).c_str());
         std::fflush(stdout);
       }
@@ -285,8 +296,8 @@ Row run_wall(int courses, int bricks, int steps, const Settings& settings) {
     const nmm::StepperCounters& c = stepper.counters();
     const nmm::SolverCounters& s = stepper.solver_counters();
     const double n = steps;
-    for (double* mean : {&row.begin_step, &row.points, &row.step, &row.iterations, &row.cuts,
-                         &row.closed})
+    for (double* mean :
+         {&row.begin_step, &row.points, &row.step, &row.iterations, &row.cuts, &row.closed})
       *mean /= n;
     row.factorisations = static_cast<double>(s.factorizations - s0.factorizations) / n;
     row.friction_solves = static_cast<double>(s.solves - s0.solves) / n - row.factorisations;
@@ -299,6 +310,8 @@ Row run_wall(int courses, int bricks, int steps, const Settings& settings) {
                    n;
     row.update = (c.seconds_update - c0.seconds_update) / n;
     row.unknowns = stepper.n_unknowns();
+    row.chatter_holds = stepper.contact()->counters().chatter_holds - holds0;
+    row.warnings = stepper.warnings();
   }
 
   // Detection alone on the boundary reached, keeping the closed contacts as the stepper does.
@@ -315,7 +328,8 @@ Row run_wall(int courses, int bricks, int steps, const Settings& settings) {
   const nmm::ContactBoundary boundary = make_boundary(model);
   row.run_distance = time_detection(boundary, keep, 2.0 * limit, 3);
   // The case-file default distance grows with the model: one run once it takes seconds.
-  row.default_distance = time_detection(boundary, keep, 2.0 * 0.01 * stepper.model_size(), 1);
+  if (settings.default_distance)
+    row.default_distance = time_detection(boundary, keep, 2.0 * 0.01 * stepper.model_size(), 1);
   return row;
 }
 
@@ -367,12 +381,15 @@ void print_tables(const std::vector<Row>& rows, bool detect_only) {
     const double n = static_cast<double>(r.edges);
     const Detection& a = r.run_distance;
     const Detection& b = r.default_distance;
-    std::printf("| %dx%d | %ld | %.3g | %ld | %.2f | %zu | %.3g | %.0f | %.1f | %.3g | %ld | %.4g | "
-                "%.0f | %.1f |\n",
-                r.courses, r.bricks, r.edges, a.distance, a.stats.edge_pairs,
+    std::printf("| %dx%d | %ld | %.3g | %ld | %.2f | %zu | %.3g | %.0f | %.1f |", r.courses,
+                r.bricks, r.edges, a.distance, a.stats.edge_pairs,
                 static_cast<double>(a.stats.edge_pairs) / n, a.candidates, 1e3 * a.seconds,
-                1e9 * a.seconds / n, 1e9 * a.seconds / n / std::log2(n), b.distance,
-                b.stats.edge_pairs, 1e3 * b.seconds, 1e9 * b.seconds / n, b.seconds / a.seconds);
+                1e9 * a.seconds / n, 1e9 * a.seconds / n / std::log2(n));
+    if (b.measured)
+      std::printf(" %.3g | %ld | %.4g | %.0f | %.1f |\n", b.distance, b.stats.edge_pairs,
+                  1e3 * b.seconds, 1e9 * b.seconds / n, b.seconds / a.seconds);
+    else
+      std::printf(" - | - | - | - | - |\n");
   }
 }
 
@@ -386,7 +403,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: %s [--edges 1e2,1e3,1e4,1e5] [--steps 10] [--limit 0.01 | --g2 F] "
                  "[--bond running|stack] [--wall COURSESxBRICKS,...] [--detect-only] "
-                 "[--verbose]\n",
+                 "[--run-distance-only] [--verbose]\n",
                  argv[0]);
     return 2;
   };
@@ -419,6 +436,8 @@ int main(int argc, char** argv) {
       settings.stack_bond = bond == "stack";
     } else if (arg == "--detect-only") {
       settings.detect_only = true;
+    } else if (arg == "--run-distance-only") {
+      settings.default_distance = false;
     } else if (arg == "--verbose") {
       settings.verbose = true;
     } else {
@@ -445,11 +464,11 @@ int main(int argc, char** argv) {
   for (const auto& [courses, bricks] : walls) {
     // Fewer steps for the big walls: their steps are cut and refactorised many times.
     const long bricks_total = static_cast<long>(courses) * bricks;
-    const int steps = bricks_total * contact_edges_per_brick >= 5e4
-                          ? std::max(1, settings.steps / 5)
-                          : (bricks_total * contact_edges_per_brick >= 5e3
-                                 ? std::max(1, settings.steps / 2)
-                                 : settings.steps);
+    const int steps =
+        bricks_total * contact_edges_per_brick >= 5e4
+            ? std::max(1, settings.steps / 5)
+            : (bricks_total * contact_edges_per_brick >= 5e3 ? std::max(1, settings.steps / 2)
+                                                             : settings.steps);
     std::printf("%s bond, %d courses x %d bricks:\n", settings.stack_bond ? "stack" : "running",
                 courses, bricks);
     std::fflush(stdout);
@@ -459,17 +478,20 @@ int main(int argc, char** argv) {
                 r.edges, r.contact_edges, r.unknowns, r.model_size, r.setup, r.equilibrium,
                 r.equilibrium_iterations);
     if (!settings.detect_only) {
-      std::printf("  per step (%d steps): step %.4f s = factorisation %.4f + solve %.4f + "
-                  "analysis %.4f + pattern %.4f + constraints/assembly %.4f + update %.4f + "
-                  "the rest (begin_step, last mode update) %.4f; begin_step %.4f s\n",
-                  r.steps, r.step, r.factorisation, r.solve, r.analysis, r.pattern, r.assembly,
-                  r.update,
-                  r.step - r.factorisation - r.solve - r.analysis - r.pattern - r.assembly -
-                      r.update,
-                  r.begin_step);
+      std::printf(
+          "  per step (%d steps): step %.4f s = factorisation %.4f + solve %.4f + "
+          "analysis %.4f + pattern %.4f + constraints/assembly %.4f + update %.4f + "
+          "the rest (begin_step, last mode update) %.4f; begin_step %.4f s\n",
+          r.steps, r.step, r.factorisation, r.solve, r.analysis, r.pattern, r.assembly, r.update,
+          r.step - r.factorisation - r.solve - r.analysis - r.pattern - r.assembly - r.update,
+          r.begin_step);
       std::printf("  %.0f contact points, %.0f closed; %.2f iterations (last try), %.2f cuts, "
-                  "%.2f refactorisations, %.2f friction-only solves\n",
-                  r.points, r.closed, r.iterations, r.cuts, r.factorisations, r.friction_solves);
+                  "%.2f refactorisations, %.2f friction-only solves; largest penetration %.3g "
+                  "m; %ld chatter holds\n",
+                  r.points, r.closed, r.iterations, r.cuts, r.factorisations, r.friction_solves,
+                  r.penetration, r.chatter_holds);
+      for (const std::string& w : r.warnings)
+        std::printf("  warning: %s\n", w.c_str());
     }
     std::printf("  detection: %ld pairs, %ld vertex-edge, %ld vertex-vertex, %ld edge-edge, "
                 "%zu candidates\n",
