@@ -9,7 +9,7 @@ for b in "$root"/build/release/bench/bench_*; do
   name=$(basename "$b")
   echo "== $name"
   case "$name" in
-    bench_cholmod_threads|bench_assembly) "$b" | tee "$out/$name.txt" ;;  # plain programs, ratios
+    bench_cholmod_threads|bench_assembly|bench_contact) "$b" | tee "$out/$name.txt" ;;  # plain programs, ratios
     *) "$b" --benchmark_min_time=0.5 | tee "$out/$name.txt" ;;      # Google Benchmark
   esac
 done
