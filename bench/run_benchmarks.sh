@@ -9,7 +9,8 @@ for b in "$root"/build/release/bench/bench_*; do
   name=$(basename "$b")
   echo "== $name"
   case "$name" in
-    bench_cholmod_threads|bench_assembly|bench_contact) "$b" | tee "$out/$name.txt" ;;  # plain programs, ratios
-    *) "$b" --benchmark_min_time=0.5 | tee "$out/$name.txt" ;;      # Google Benchmark
+    bench_simplex_integration) "$b" --benchmark_min_time=0.5 | tee "$out/$name.txt" ;;  # Google Benchmark
+    bench_cover_mesher) { "$b" robustness 1000 && "$b" speed; } | tee "$out/$name.txt" ;;
+    *) "$b" | tee "$out/$name.txt" ;;  # plain programs: ratios against a baseline in the same run
   esac
 done
