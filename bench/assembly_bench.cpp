@@ -15,11 +15,11 @@
 #include "solver/sparsity.hpp"
 #include "solver/threads.hpp"
 
+#include "timing.hpp"
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,23 +30,7 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-// Best wall time of at least `repeats` calls of f, and of more (up to 200) while they have
-// taken less than half a second: on a shared 2-core machine the best of many short runs is
-// the figure that other processes disturb least.
-template <class Function> double best_seconds(int repeats, Function&& f) {
-  double best = 1e300;
-  double total = 0.0;
-  for (int r = 0; r < repeats || (total < 0.5 && r < 200); ++r) {
-    const auto start = Clock::now();
-    f();
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    best = std::min(best, seconds);
-    total += seconds;
-  }
-  return best;
-}
+using nmm::bench::best_seconds;
 
 struct Mesh {
   int n_dofs = 0;

@@ -45,12 +45,12 @@
 #include "solver/threads.hpp"
 #include "solver/time_stepper.hpp"
 
+#include "timing.hpp"
+
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <memory>
 #include <set>
 #include <string>
@@ -58,10 +58,10 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using nmm::bench::best_seconds;
+using nmm::bench::Clock;
+using nmm::bench::load_average;
+using nmm::bench::since;
 
 constexpr double pi = 3.14159265358979323846;
 constexpr double brick_length = 1.0;
@@ -146,28 +146,6 @@ nmm::ContactBoundary make_boundary(const nmm::Model& model) {
   return b;
 }
 
-/// Best wall time of at least `repeats` calls of f, and of more (up to 50) while they have
-/// taken less than half a second (as in bench/assembly_bench.cpp).
-template <class Function> double best_seconds(int repeats, Function&& f) {
-  double best = 1e300;
-  double total = 0.0;
-  for (int r = 0; r < repeats || (total < 0.5 && r < 50); ++r) {
-    const auto start = Clock::now();
-    f();
-    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    best = std::min(best, seconds);
-    total += seconds;
-  }
-  return best;
-}
-
-double load_average() {
-  std::ifstream in("/proc/loadavg");
-  double value = 0.0;
-  in >> value;
-  return value;
-}
-
 struct Detection {
   bool measured = false;
   double distance = 0.0;
@@ -219,10 +197,13 @@ Detection time_detection(const nmm::ContactBoundary& boundary,
   nmm::DetectionOptions options;
   options.distance = distance;
   options.penetration = 0.1 * distance; // as ContactSystem::begin_step
-  d.seconds = best_seconds(repeats, [&] {
-    d.stats = {};
-    d.candidates = nmm::detect_contacts(boundary, options, keep, &d.stats).size();
-  });
+  d.seconds = best_seconds(
+      repeats,
+      [&] {
+        d.stats = {};
+        d.candidates = nmm::detect_contacts(boundary, options, keep, &d.stats).size();
+      },
+      50); // at most 50 runs: one detection of the largest wall takes seconds
   return d;
 }
 

@@ -13,7 +13,8 @@
 #include "solver/threads.hpp"
 #include "solver/time_stepper.hpp"
 
-#include <chrono>
+#include "timing.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -21,10 +22,8 @@
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
+using nmm::bench::Clock;
+using nmm::bench::since;
 
 void run(int order, double target_dofs) {
   // A 4 m x 1 m beam clamped at x = 0 under gravity, dynamic, 1 ms steps.
