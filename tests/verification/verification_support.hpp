@@ -10,6 +10,7 @@
 #include "mesh/physical_mesh.hpp"
 #include "solver/time_stepper.hpp"
 
+#include "../support/gauss_quadrature.hpp"
 #include <Eigen/LU>
 
 #include <cmath>
@@ -43,34 +44,9 @@ inline CurveLoad traction_load(int curve, Point2 traction) {
   return load;
 }
 
-/// Integral over a convex polygon of f by a fan of triangles with the 7-point, degree-5 Gauss
-/// rule (independent of the simplex integration under test).
+/// Integral over a convex polygon of f (independent of the simplex integration under test).
 template <class F> double integrate(const Polygon& polygon, F f) {
-  static const double w[7] = {0.225,
-                              0.132394152788506,
-                              0.132394152788506,
-                              0.132394152788506,
-                              0.125939180544827,
-                              0.125939180544827,
-                              0.125939180544827};
-  static const double l[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
-                                 {0.059715871789770, 0.470142064105115, 0.470142064105115},
-                                 {0.470142064105115, 0.059715871789770, 0.470142064105115},
-                                 {0.470142064105115, 0.470142064105115, 0.059715871789770},
-                                 {0.797426985353087, 0.101286507323456, 0.101286507323456},
-                                 {0.101286507323456, 0.797426985353087, 0.101286507323456},
-                                 {0.101286507323456, 0.101286507323456, 0.797426985353087}};
-  const Loop& loop = polygon.outer;
-  double total = 0.0;
-  for (std::size_t i = 1; i + 1 < loop.size(); ++i) {
-    const Point2& a = loop[0];
-    const Point2& b = loop[i];
-    const Point2& c = loop[i + 1];
-    const double area = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-    for (int g = 0; g < 7; ++g)
-      total += area * w[g] * f(Point2(l[g][0] * a + l[g][1] * b + l[g][2] * c));
-  }
-  return total;
+  return gauss_fan(polygon, 0, f);
 }
 
 /// Energy norm of the stress error, sqrt(∫ (s - s_h)^T D^-1 (s - s_h)), over every element

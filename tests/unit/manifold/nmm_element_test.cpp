@@ -2,6 +2,7 @@
 #include "manifold/material.hpp"
 #include "manifold/nmm_element.hpp"
 
+#include "../../support/gauss_quadrature.hpp"
 #include <Eigen/Eigenvalues>
 #include <gtest/gtest.h>
 
@@ -190,34 +191,10 @@ TEST(NmmElementIntegrals, StiffnessIsSymmetricWithExactlyTheRigidNullSpace) {
   }
 }
 
-/// Independent quadrature: fan-triangulate the (star-shaped from its last vertex) polygon
-/// and integrate with the 7-point degree-5 Gauss rule on each triangle.
+/// Independent quadrature: the (star-shaped from its last vertex) polygon as a fan of
+/// triangles, each by the 7-point degree-5 Gauss rule.
 double quadrature(const Polygon& polygon, const std::function<double(const Point2&)>& f) {
-  static const double w[7] = {0.225,
-                              0.132394152788506,
-                              0.132394152788506,
-                              0.132394152788506,
-                              0.125939180544827,
-                              0.125939180544827,
-                              0.125939180544827};
-  static const double l[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},
-                                 {0.059715871789770, 0.470142064105115, 0.470142064105115},
-                                 {0.470142064105115, 0.059715871789770, 0.470142064105115},
-                                 {0.470142064105115, 0.470142064105115, 0.059715871789770},
-                                 {0.797426985353087, 0.101286507323456, 0.101286507323456},
-                                 {0.101286507323456, 0.797426985353087, 0.101286507323456},
-                                 {0.101286507323456, 0.101286507323456, 0.797426985353087}};
-  const Loop& loop = polygon.outer;
-  double total = 0.0;
-  for (std::size_t i = 0; i + 1 < loop.size(); ++i) {
-    const Point2& a = loop.back();
-    const Point2& b = loop[i];
-    const Point2& c = loop[i + 1];
-    const double area = 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-    for (int g = 0; g < 7; ++g)
-      total += area * w[g] * f(l[g][0] * a + l[g][1] * b + l[g][2] * c);
-  }
-  return total;
+  return testing::gauss_fan(polygon, polygon.outer.size() - 1, f);
 }
 
 TEST(NmmElementIntegrals, CutElementMatchesIndependentQuadrature) {
