@@ -3,6 +3,7 @@
 // its output captured, for end-to-end tests of the command line; and a temporary folder.
 #pragma once
 
+#include "temp_dir.hpp"
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -33,31 +34,6 @@ inline void write_text(const fs::path& file, const std::string& text) {
   std::ofstream out(file, std::ios::binary);
   out << text;
 }
-
-/// A fresh folder per test (named after the test and the process), removed afterwards.
-class TempDir {
-public:
-  explicit TempDir(const std::string& prefix) {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = prefix + "_" + std::to_string(::getpid()) + "_" + info->name();
-    for (char& c : name)
-      if (c == '/')
-        c = '_';
-    path_ = fs::temp_directory_path() / name;
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  [[nodiscard]] const fs::path& path() const { return path_; }
-
-private:
-  fs::path path_;
-};
 
 /// A started child process; its stdout and stderr go to files.
 struct ChildProcess {

@@ -2,6 +2,7 @@
 #include "io/case_file.hpp"
 #include "mesh/error.hpp"
 
+#include "../../support/temp_dir.hpp"
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -661,7 +662,7 @@ std::vector<BadCase> bad_cases() {
   };
 }
 
-class MalformedCase : public testing::TestWithParam<BadCase> {};
+class MalformedCase : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(MalformedCase, IsRejectedAtItsLineWithARemedy) {
   const BadCase& bad = GetParam();
@@ -684,8 +685,8 @@ TEST_P(MalformedCase, IsRejectedAtItsLineWithARemedy) {
 
 INSTANTIATE_TEST_SUITE_P(CaseFile,
                          MalformedCase,
-                         testing::ValuesIn(bad_cases()),
-                         [](const testing::TestParamInfo<BadCase>& parameter) {
+                         ::testing::ValuesIn(bad_cases()),
+                         [](const ::testing::TestParamInfo<BadCase>& parameter) {
                            return std::string(parameter.param.name);
                          });
 
@@ -707,20 +708,14 @@ TEST(CaseFile, ColumnPointsAtTheOffendingKeyOrValue) {
 
 // ---- read_case_file: the file system ----
 
-class CaseFileOnDisk : public testing::Test {
+class CaseFileOnDisk : public ::testing::Test {
 protected:
-  void SetUp() override {
-    folder_ =
-        fs::temp_directory_path() /
-        ("nmm_case_file_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-         "_" + testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(folder_ / "case");
-  }
-  void TearDown() override { fs::remove_all(folder_); }
+  void SetUp() override { fs::create_directories(folder_ / "case"); }
   void write(const fs::path& path, const std::string& text) const {
     std::ofstream(folder_ / path) << text;
   }
-  fs::path folder_;
+  testing::TempDir temp_{"nmm_case_file_test"};
+  fs::path folder_ = temp_.path();
 };
 
 TEST_F(CaseFileOnDisk, ResolvesTheGeometryNextToTheCaseFile) {

@@ -5,6 +5,7 @@
 #include "mesh/math_mesh.hpp"
 #include "mesh/physical_mesh.hpp"
 
+#include "../../support/temp_dir.hpp"
 #include <gmsh.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -30,27 +31,7 @@ namespace fs = std::filesystem;
 
 fs::path data(const std::string& name) { return fs::path(NMM_TEST_DATA_DIR) / name; }
 
-/// A fresh directory per test, removed afterwards.
-class TempDir {
-public:
-  TempDir() {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    path_ = fs::temp_directory_path() /
-            ("nmm_gmsh_reader_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ignored;
-    fs::remove_all(path_, ignored);
-  }
-  TempDir(const TempDir&) = delete;
-  TempDir& operator=(const TempDir&) = delete;
-  [[nodiscard]] const fs::path& path() const { return path_; }
-
-private:
-  fs::path path_;
-};
+using testing::TempDir;
 
 /// Runs @p read, expects an InputError and returns its message.
 std::string input_error_of(const std::function<void()>& read) {
@@ -361,7 +342,7 @@ void expect_same_groups(const PhysicalMesh& a, const PhysicalMesh& b) {
 }
 
 TEST(GmshReader, MshVersion4And2GiveTheRegionsOfTheGeo) {
-  const TempDir directory;
+  const TempDir directory("nmm_gmsh_reader");
   const PhysicalMesh geo = read_physical_mesh(data("square_with_hole.geo"));
   for (const double version : {4.1, 2.2}) {
     SCOPED_TRACE(version);
@@ -471,7 +452,7 @@ TEST(GmshReaderErrors, MissingFileIsNamed) {
 }
 
 TEST(GmshReaderErrors, UnknownExtensionDirectoryAndGarbageAreRefused) {
-  const TempDir directory;
+  const TempDir directory("nmm_gmsh_reader");
   const fs::path text = directory.path() / "geometry.txt";
   std::ofstream(text) << "Point(1) = {0, 0, 0};\n";
   std::string message = input_error_of([&] { (void)read_physical_mesh(text); });

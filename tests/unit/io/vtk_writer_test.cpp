@@ -4,6 +4,7 @@
 #include "io/vtk_writer.hpp"
 #include "mesh/error.hpp"
 
+#include "../../support/temp_dir.hpp"
 #include <gtest/gtest.h>
 #include <unistd.h>
 #include <vtkCell.h>
@@ -45,18 +46,6 @@ namespace fs = std::filesystem;
 /// A fresh directory per test, removed afterwards.
 class VtkWriterTest : public ::testing::Test {
 protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("nmm_vtk_writer_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::permissions(dir_, fs::perms::owner_all, fs::perm_options::add, ignored);
-    fs::remove_all(dir_, ignored);
-  }
   /// Files in the test directory whose name ends in ".tmp" (atomic writes leave none).
   [[nodiscard]] std::vector<fs::path> temporary_files() const {
     std::vector<fs::path> result;
@@ -65,7 +54,8 @@ protected:
         result.push_back(entry.path());
     return result;
   }
-  fs::path dir_;
+  testing::TempDir temp_{"nmm_vtk_writer"};
+  fs::path dir_ = temp_.path();
 };
 
 vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& file) {
