@@ -49,36 +49,34 @@ template <class F> double integrate(const Polygon& polygon, F f) {
   return gauss_fan(polygon, 0, f);
 }
 
-/// Energy norm of the stress error, sqrt(∫ (s - s_h)^T D^-1 (s - s_h)), over every element
-/// of a model whose elements hold their stress (one static step from zero stress).
-template <class ExactStress> double stress_energy_error(const Model& model, ExactStress exact) {
+/// Energy norm sqrt(∫ s^T D^-1 s) over every element of a stress field s = field(element, x).
+template <class Field> double stress_energy_norm(const Model& model, Field field) {
   double total = 0.0;
   for (int e = 0; e < model.n_elements(); ++e) {
     const ModelElement& element = model.elements[static_cast<std::size_t>(e)];
     const Eigen::Matrix3d compliance = elasticity_matrix(model.material_of(e)).inverse();
     for (const Polygon& p : element.polygons) {
       total += integrate(p, [&](const Point2& x) {
-        const Eigen::Vector3d d = exact(x) - element.stress.at(x);
-        return d.dot(compliance * d);
+        const Eigen::Vector3d s = field(element, x);
+        return s.dot(compliance * s);
       });
     }
   }
   return std::sqrt(total);
 }
 
+/// Energy norm of the stress error, sqrt(∫ (s - s_h)^T D^-1 (s - s_h)), over every element
+/// of a model whose elements hold their stress (one static step from zero stress).
+template <class ExactStress> double stress_energy_error(const Model& model, ExactStress exact) {
+  return stress_energy_norm(model, [&](const ModelElement& element, const Point2& x) {
+    return Eigen::Vector3d(exact(x) - element.stress.at(x));
+  });
+}
+
 /// The same energy of the exact stress alone, for relative errors.
 template <class ExactStress> double stress_energy(const Model& model, ExactStress exact) {
-  double total = 0.0;
-  for (int e = 0; e < model.n_elements(); ++e) {
-    const Eigen::Matrix3d compliance = elasticity_matrix(model.material_of(e)).inverse();
-    for (const Polygon& p : model.elements[static_cast<std::size_t>(e)].polygons) {
-      total += integrate(p, [&](const Point2& x) {
-        const Eigen::Vector3d s = exact(x);
-        return s.dot(compliance * s);
-      });
-    }
-  }
-  return std::sqrt(total);
+  return stress_energy_norm(
+      model, [&](const ModelElement&, const Point2& x) { return Eigen::Vector3d(exact(x)); });
 }
 
 /// Physical mesh + math mesh + cover system + model, ready for a stepper.
