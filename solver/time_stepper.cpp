@@ -15,6 +15,7 @@
 #include <set>
 #include <span>
 #include <sstream>
+#include <utility>
 
 namespace nmm {
 
@@ -327,6 +328,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
 
   StepReport report;
   Eigen::VectorXd raw;
+  Eigen::VectorXd new_velocity; // of a dynamic step, checked before it is committed
   // Contacts are found once per step; a cut step continues the open-close iteration from the
   // modes it reached (Shi 8.2: "the time step will be reduced to one third, and the
   // open-close iteration continues").
@@ -616,8 +618,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         impl_->energy_started = true;
       }
       const double work = loads.dot(raw);
-      const Eigen::VectorXd v = (2.0 / dt) * raw - velocity_;
-      const double kinetic = kinetic_energy(v);
+      new_velocity = (2.0 / dt) * raw - velocity_; // Shi eq. 2.18-2.19: v1 = 2 d / dt - v0
+      const double kinetic = kinetic_energy(new_velocity);
       const double budget = std::max(impl_->energy_budget + work, 0.0);
       if (kinetic > 10.0 * budget + std::numeric_limits<double>::min()) {
         if (cut < options_.max_step_cuts) {
@@ -626,21 +628,20 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           ++counters_.step_cuts;
           continue;
         }
-        throw NumericalError(energy_message(model_, v, step_ + 1, kinetic, budget));
+        throw NumericalError(energy_message(model_, new_velocity, step_ + 1, kinetic, budget));
       }
       impl_->energy_budget += work;
-    } else {
-      impl_->energy_budget += loads.dot(raw);
+      report.kinetic_energy = kinetic; // with the step's element masses
+    } else if (equilibrium) {
+      impl_->energy_budget += loads.dot(raw); // stored in the springs, released later
     }
     break;
   }
 
   Clock::time_point update_clock = Clock::now();
-  // Commit: velocities (Shi eq. 2.18-2.19: v1 = 2 d / dt - v0), stresses, geometry.
-  if (equilibrium)
-    velocity_.setZero();
-  else if (options_.integration == TimeIntegration::dynamic)
-    velocity_ = (2.0 / dt) * raw - velocity_;
+  // Commit: velocities (computed and checked above), stresses, geometry.
+  if (dynamic)
+    velocity_ = std::move(new_velocity);
   else
     velocity_.setZero();
   if (impl_->contact) {
@@ -675,11 +676,6 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   report.time = time_;
   report.dt = dt;
 
-  // Kinetic energy 1/2 v^T M v of the new velocities with the step's element masses.
-  const double kinetic = options_.integration == TimeIntegration::dynamic && !equilibrium
-                             ? kinetic_energy(velocity_)
-                             : 0.0;
-  report.kinetic_energy = kinetic;
   lap(update_clock, counters_.seconds_update);
   return report;
 }
