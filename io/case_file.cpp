@@ -848,6 +848,10 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
                     "the spring stiffness must be > 0 (N/m)");
   spec.open_close_max = view.small_integer_or("open_close_max", 6, 1, 100, "6");
   spec.solver = static_cast<LinearSolverKind>(view.choice("solver", solver_kinds, 0));
+  if (spec.solver != LinearSolverKind::cholmod)
+    view.fail_at_value("solver", "[analysis] solver = \"pcg\" is not yet supported (the "
+                                 "conjugate-gradient solver is planned); remove the line or "
+                                 "write solver = \"cholmod\"");
   spec.max_step_cuts = view.small_integer_or("max_step_cuts", 10, 0, 50, "10");
   spec.end_time = view.number("end_time", "s", "1.0");
   if (spec.end_time && !(*spec.end_time > 0.0))
@@ -901,6 +905,10 @@ OutputSpec read_output(Context& context, const toml::table& root, const std::str
   }
   spec.every = view.small_integer_or("every", 1, 1, 100'000'000, "10");
   spec.checkpoint_every = view.small_integer_or("checkpoint_every", 0, 0, 100'000'000, "1000");
+  if (spec.checkpoint_every != 0)
+    view.fail_at_value("checkpoint_every", "[output] checkpoint_every is not yet supported "
+                                           "(restart checkpoints are planned); remove the line "
+                                           "or write checkpoint_every = 0");
   return spec;
 }
 
