@@ -604,12 +604,12 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   const auto write_step = [&](long step) {
     const fs::path file = dir / step_file_name(step);
     write_vtu(file, make_step_data(model, initial_points, stepper.velocity(), stepper.time()));
-    pvd.add(stepper.time(), file, 0);
+    std::vector<fs::path> parts{file};
     if (const ContactSystem* contact = stepper.contact()) {
-      const fs::path contacts = dir / contact_file_name(step);
-      write_vtp_points(contacts, make_contact_data(*contact, model, stepper.time()));
-      pvd.add(stepper.time(), contacts, 1);
+      parts.push_back(dir / contact_file_name(step));
+      write_vtp_points(parts.back(), make_contact_data(*contact, model, stepper.time()));
     }
+    pvd.add(stepper.time(), parts);
     written = step;
     ++result.output_steps;
   };

@@ -537,19 +537,22 @@ std::string exact_text(double value) {
 
 PvdSeries::PvdSeries(fs::path pvd_file) : pvd_file_(std::move(pvd_file)) {}
 
-void PvdSeries::add(double time, const fs::path& data_file, int part) {
-  require(std::isfinite(time), "time " + exact_text(time) + " of " + quoted(data_file));
-  require(part >= 0, "negative part index " + std::to_string(part));
+void PvdSeries::add(double time, const std::vector<fs::path>& parts) {
+  require(!parts.empty(), "an output step without files");
+  require(std::isfinite(time), "time " + exact_text(time) + " of " + quoted(parts.front()));
   const fs::path directory = fs::absolute(pvd_file_).parent_path().lexically_normal();
-  const fs::path target = fs::absolute(data_file).lexically_normal();
-  fs::path relative = target.lexically_relative(directory);
-  if (relative.empty())
-    relative = target;
-  entries_.push_back(Entry{time, part, relative.generic_string()});
+  const std::size_t before = entries_.size();
+  for (std::size_t part = 0; part < parts.size(); ++part) {
+    const fs::path target = fs::absolute(parts[part]).lexically_normal();
+    fs::path relative = target.lexically_relative(directory);
+    if (relative.empty())
+      relative = target;
+    entries_.push_back(Entry{time, static_cast<int>(part), relative.generic_string()});
+  }
   try {
     write();
   } catch (...) {
-    entries_.pop_back(); // keep entries() equal to what the file on disk lists
+    entries_.resize(before); // keep entries() equal to what the file on disk lists
     throw;
   }
 }

@@ -141,11 +141,11 @@ public:
   /// @param pvd_file  the .pvd to (re)write; its directory must exist when add() is called.
   explicit PvdSeries(std::filesystem::path pvd_file);
 
-  /// Appends the data file @p data_file (absolute or relative to the current directory) at
-  /// @p time, in seconds, and rewrites the .pvd. @p part numbers the files of one time step
-  /// (0: elements .vtu, 1: contacts .vtp...): ParaView shows each part as a block.
-  /// @throws InputError naming the .pvd when it cannot be written.
-  void add(double time, const std::filesystem::path& data_file, int part = 0);
+  /// Appends the data files of one output step at @p time, in seconds, and rewrites the .pvd
+  /// once. The files (absolute or relative to the current directory) are the step's parts,
+  /// in order (0: elements .vtu, 1: contacts .vtp...): ParaView shows each part as a block.
+  /// @throws InputError naming the .pvd when it cannot be written (nothing is added then).
+  void add(double time, const std::vector<std::filesystem::path>& parts);
 
   [[nodiscard]] const std::filesystem::path& file() const noexcept { return pvd_file_; }
   [[nodiscard]] const std::vector<Entry>& entries() const noexcept { return entries_; }

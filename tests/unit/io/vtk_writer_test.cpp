@@ -497,7 +497,7 @@ TEST_F(VtkWriterTest, UnwritableDirectoryIsAnInputErrorNamingIt) {
   } else {
     expect_input_error_naming(read_only, [&] { write_vtu(read_only / "mesh.vtu", data); });
     PvdSeries series(read_only / "case.pvd");
-    expect_input_error_naming(read_only, [&] { series.add(0.0, read_only / "step.vtu"); });
+    expect_input_error_naming(read_only, [&] { series.add(0.0, {read_only / "step.vtu"}); });
   }
   fs::permissions(read_only, fs::perms::owner_all);
   EXPECT_TRUE(temporary_files().empty());
@@ -549,34 +549,41 @@ TEST_F(VtkWriterTest, PvdIsValidAfterEveryAddAndListsEntriesInOrder) {
   const fs::path pvd = dir_ / "case.pvd";
   PvdSeries series(pvd);
   EXPECT_FALSE(fs::exists(pvd)) << "nothing is written before the first add()";
-  struct Step {
+  struct Part {
     double time;
     fs::path file;
     int part;
     std::string listed;
   };
-  const std::vector<Step> steps{
-      {0.0, dir_ / "step_000000.vtu", 0, "step_000000.vtu"},
-      {0.1 + 0.2, dir_ / "step_000010.vtu", 0, "step_000010.vtu"},
-      {0.1 + 0.2, dir_ / "contacts_000010.vtp", 1, "contacts_000010.vtp"},
-      {1.0e-3 / 3.0, dir_ / "steps" / "a&b <'quoted'>.vtu", 0, "steps/a&b <'quoted'>.vtu"},
+  // Three output steps; the second has two parts (elements and contacts).
+  const std::vector<std::vector<Part>> steps{
+      {{0.0, dir_ / "step_000000.vtu", 0, "step_000000.vtu"}},
+      {{0.1 + 0.2, dir_ / "step_000010.vtu", 0, "step_000010.vtu"},
+       {0.1 + 0.2, dir_ / "contacts_000010.vtp", 1, "contacts_000010.vtp"}},
+      {{1.0e-3 / 3.0, dir_ / "steps" / "a&b <'quoted'>.vtu", 0, "steps/a&b <'quoted'>.vtu"}},
   };
-  for (std::size_t s = 0; s < steps.size(); ++s) {
-    if (steps[s].part == 0)
-      write_vtu(steps[s].file, mesh);
-    else
-      write_vtp_points(steps[s].file, contacts);
-    series.add(steps[s].time, steps[s].file, steps[s].part);
+  std::vector<Part> listed;
+  for (const std::vector<Part>& step : steps) {
+    std::vector<fs::path> files;
+    for (const Part& p : step) {
+      if (p.part == 0)
+        write_vtu(p.file, mesh);
+      else
+        write_vtp_points(p.file, contacts);
+      files.push_back(p.file);
+      listed.push_back(p);
+    }
+    series.add(step.front().time, files);
 
     const std::vector<PvdLine> lines = read_pvd(pvd);
-    ASSERT_EQ(lines.size(), s + 1);
-    for (std::size_t k = 0; k <= s; ++k) {
-      EXPECT_EQ(std::stod(lines[k].timestep), steps[k].time) << "exact round trip";
-      EXPECT_EQ(lines[k].part, std::to_string(steps[k].part));
-      EXPECT_EQ(lines[k].file, steps[k].listed);
+    ASSERT_EQ(lines.size(), listed.size());
+    for (std::size_t k = 0; k < listed.size(); ++k) {
+      EXPECT_EQ(std::stod(lines[k].timestep), listed[k].time) << "exact round trip";
+      EXPECT_EQ(lines[k].part, std::to_string(listed[k].part));
+      EXPECT_EQ(lines[k].file, listed[k].listed);
       EXPECT_TRUE(fs::exists(dir_ / lines[k].file)) << "relative to the .pvd";
     }
-    EXPECT_EQ(series.entries().size(), s + 1);
+    EXPECT_EQ(series.entries().size(), listed.size());
     EXPECT_TRUE(temporary_files().empty());
   }
   // The entry VTK parsed really is the file: read it through the .pvd's relative path.
@@ -587,7 +594,7 @@ TEST_F(VtkWriterTest, PvdIsValidAfterEveryAddAndListsEntriesInOrder) {
 TEST_F(VtkWriterTest, PvdInAMissingDirectoryIsAnInputErrorAndListsNothing) {
   const fs::path missing = dir_ / "gone";
   PvdSeries series(missing / "case.pvd");
-  expect_input_error_naming(missing, [&] { series.add(0.0, missing / "step_000000.vtu"); });
+  expect_input_error_naming(missing, [&] { series.add(0.0, {missing / "step_000000.vtu"}); });
   EXPECT_TRUE(series.entries().empty());
 }
 
