@@ -245,7 +245,9 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
   EXPECT_DOUBLE_EQ(last[1], 1.0);
   const double slid = -(last[8] + last[9]) / std::sqrt(2.0);
   const double exact = 0.5 * 9.81 * (std::sqrt(0.5) - std::tan(M_PI / 6.0) * std::sqrt(0.5));
-  EXPECT_NEAR(slid, exact, 1e-3 * exact);
+  // Measured 1.1e-7 relative; the friction iteration stops at a work residual of 1e-5 of the
+  // step's friction work, so the distance is trusted to 1e-5 and no better.
+  EXPECT_NEAR(slid, exact, 1e-5 * exact);
   EXPECT_GT(last[4], 0.0) << "the block is in contact at the end";
 
   // Every step file has its contact file in the series (part 1), with the arrays of
@@ -275,7 +277,9 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
       if (state->GetComponent(k, 0) != 0.0)
         total += normal->GetComponent(k, 0);
     }
-    EXPECT_NEAR(total, 1250.0 * 9.81 * std::sqrt(0.5), 0.02 * 1250.0 * 9.81) << entry.file;
+    // The normal springs swing about the weight's normal part as the block slides: measured
+    // at most 6.8e-4 of m g over the output steps; 2e-3 m g leaves a factor 3.
+    EXPECT_NEAR(total, 1250.0 * 9.81 * std::sqrt(0.5), 2e-3 * 1250.0 * 9.81) << entry.file;
   }
   EXPECT_EQ(2 * contact_files, static_cast<int>(series.size()));
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 #include <vector>
 
 namespace nmm {
@@ -83,13 +84,18 @@ TEST(ContactDetection, CornerAgainstAnEdgeIsAnAngleToEdgeContact) {
 
 TEST(ContactDetection, AngleCriterionRejectsAWedgeThatWouldHaveToRotate) {
   // A corner whose wedge dips 10 degrees below the edge's line cannot touch it without a
-  // rotation larger than Shi's 2 x 1.5 degrees.
-  const double a = 10.0 * pi / 180.0;
-  const ContactBoundary b = boundary_of(
-      {square(-2, -1, 4), {{0, 3.001}, {std::cos(-a), 3.001 + std::sin(-a)}, {0.2, 3.5}}});
-  const auto contacts = detect_contacts(b, options(0.02), {});
-  for (const ContactCandidate& c : contacts)
-    EXPECT_NE(c.slave, 4);
+  // rotation larger than Shi's 2 x 1.5 degrees; dipping 2 degrees it can (the control: the
+  // same corner, so a detector that finds nothing at all fails).
+  const auto wedge = [](double degrees) {
+    const double a = degrees * pi / 180.0;
+    return boundary_of(
+        {square(-2, -1, 4), {{0, 3.001}, {std::cos(-a), 3.001 + std::sin(-a)}, {0.2, 3.5}}});
+  };
+  EXPECT_TRUE(detect_contacts(wedge(10.0), options(0.02), {}).empty());
+  const auto contacts = detect_contacts(wedge(2.0), options(0.02), {});
+  ASSERT_EQ(contacts.size(), 1U);
+  EXPECT_EQ(contacts[0].slave, 4);  // the wedge's corner
+  EXPECT_EQ(contacts[0].master, 2); // the base's top edge
 }
 
 TEST(ContactDetection, TwoConvexCornersTouchThroughOneEntranceLineWithAnAlternative) {
@@ -103,17 +109,26 @@ TEST(ContactDetection, TwoConvexCornersTouchThroughOneEntranceLineWithAnAlternat
 }
 
 TEST(ContactDetection, ConvexCornerIntoAReflexCornerHasTwoEntranceLines) {
-  // An L-shaped base with a reflex corner at (1, 1), and a square's corner sitting in it.
-  const ContactBoundary b =
-      boundary_of({{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}, square(1.004, 1.003, 0.5)});
+  // An L-shaped base with a reflex (270 degree) corner at (1, 1), and the tip of a 60 degree
+  // wedge sitting in it, its sides 15 degrees off the L's sides (so no edge faces an edge):
+  // the tip enters through both entrance lines of the reflex angle (Shi 3.2), one contact
+  // against each of its edges.
+  const double c = 1.003;
+  const double a = 15.0 * pi / 180.0;
+  const double b60 = 75.0 * pi / 180.0;
+  const ContactBoundary b = boundary_of({{{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}},
+                                         {{c, c},
+                                          {c + 0.5 * std::cos(a), c + 0.5 * std::sin(a)},
+                                          {c + 0.5 * std::cos(b60), c + 0.5 * std::sin(b60)}}});
   const auto contacts = detect_contacts(b, options(0.02), {});
-  int against_reflex = 0;
-  for (const ContactCandidate& c : contacts)
-    against_reflex +=
-        c.kind == ContactKind::vertex_edge && c.slave == 6 && (c.master == 2 || c.master == 3);
-  // The square's sides also face the L's sides: those are edge contacts; the corner's own
-  // contact goes to both edges of the reflex angle unless the edge contacts cover it.
-  EXPECT_EQ(count(contacts, ContactKind::edge_edge) + against_reflex, 2);
+  ASSERT_EQ(contacts.size(), 2U);
+  std::set<int> masters;
+  for (const ContactCandidate& contact : contacts) {
+    EXPECT_EQ(contact.kind, ContactKind::vertex_edge);
+    EXPECT_EQ(contact.slave, 6); // the wedge's tip
+    masters.insert(contact.master);
+  }
+  EXPECT_EQ(masters, (std::set<int>{2, 3})); // the two edges of the reflex corner
 }
 
 TEST(ContactDetection, AThinBlockDoesNotTouchItselfAcrossItsThickness) {
