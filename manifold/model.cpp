@@ -2,6 +2,7 @@
 #include "manifold/model.hpp"
 
 #include "mesh/error.hpp"
+#include "mesh/union_find.hpp"
 
 #include <Eigen/QR>
 #include <Eigen/SVD>
@@ -10,7 +11,6 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <span>
 
 namespace nmm {
@@ -65,29 +65,6 @@ bool polygon_contains(const Polygon& polygon, const Point2& p) {
 
 /// J v: v turned by 90 degrees.
 Point2 turned(const Point2& v) { return {-v.y(), v.x()}; }
-
-class SimpleUnionFind {
-public:
-  explicit SimpleUnionFind(std::size_t n) : parent_(n) {
-    std::iota(parent_.begin(), parent_.end(), 0);
-  }
-  int find(int i) {
-    while (parent_[at(i)] != i) {
-      parent_[at(i)] = parent_[at(parent_[at(i)])];
-      i = parent_[at(i)];
-    }
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b)
-      parent_[at(std::max(a, b))] = std::min(a, b);
-  }
-
-private:
-  std::vector<int> parent_;
-};
 
 } // namespace
 
@@ -204,7 +181,7 @@ std::vector<LinearConstraint> Model::dependency_relations() const {
     block_elements[elements[at(e)].block].push_back(e);
   for (const auto& [block, members] : block_elements) {
     // Rigid clusters: elements sharing two covers (a side of their triangles).
-    SimpleUnionFind clusters(members.size());
+    UnionFind clusters(members.size());
     std::map<std::pair<int, int>, int> first_with_side;
     for (std::size_t i = 0; i < members.size(); ++i) {
       const auto& c = elements[at(members[i])].covers;

@@ -11,6 +11,7 @@
 
 #include "mesh/detail/cgal_types.hpp"
 #include "mesh/error.hpp"
+#include "mesh/union_find.hpp"
 
 #include <CGAL/Arr_batched_point_location.h>
 
@@ -48,32 +49,6 @@ double seconds_since(Clock::time_point start) {
 }
 
 std::size_t to_index(int i) { return static_cast<std::size_t>(i); }
-
-/// Union-find with path halving; unite() keeps the smaller index as the root so results do
-/// not depend on the order of the unions.
-class UnionFind {
-public:
-  explicit UnionFind(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int i) {
-    while (parent_[to_index(i)] != i) {
-      parent_[to_index(i)] = parent_[to_index(parent_[to_index(i)])];
-      i = parent_[to_index(i)];
-    }
-    return i;
-  }
-  void unite(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a == b)
-      return;
-    if (a < b)
-      std::swap(a, b);
-    parent_[to_index(a)] = b;
-  }
-
-private:
-  std::vector<int> parent_;
-};
 
 /// Rounds an exact coordinate to double, the same exact value always to the same double
 /// (the exact rational is canonical), so a vertex computed in two local arrangements gets
