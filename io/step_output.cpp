@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/step_output.hpp"
 
+#include "manifold/simplex_integration.hpp"
 #include "mesh/error.hpp"
 #include "mesh/geometry.hpp"
 
@@ -10,22 +11,6 @@
 #include <utility>
 
 namespace nmm {
-
-namespace {
-
-/// Adds the first moments of a loop (shoelace, about @p origin for accuracy far from 0):
-/// signed area and signed area x centroid offset.
-void add_moments(const Loop& loop, const Point2& origin, double& area_sum, Point2& moment) {
-  for (std::size_t i = 0; i < loop.size(); ++i) {
-    const Point2 a = loop[i] - origin;
-    const Point2 b = loop[(i + 1) % loop.size()] - origin;
-    const double cross = a.x() * b.y() - a.y() * b.x();
-    area_sum += 0.5 * cross;
-    moment += cross * (a + b) / 6.0;
-  }
-}
-
-} // namespace
 
 PrincipalStress principal_stress(const Eigen::Vector3d& stress) {
   const double mean = 0.5 * (stress(0) + stress(1));
@@ -51,28 +36,12 @@ Point2 element_centroid(const ModelElement& element) {
   if (n == 0)
     return origin;
   origin /= static_cast<double>(n);
-  double total_area = 0.0;
-  Point2 total_moment = Point2::Zero();
-  for (const Polygon& polygon : element.polygons) {
-    // Outer loops count positive, holes negative, whatever their orientation.
-    double outer_area = 0.0;
-    Point2 outer_moment = Point2::Zero();
-    add_moments(polygon.outer, origin, outer_area, outer_moment);
-    const double outer_sign = outer_area >= 0.0 ? 1.0 : -1.0;
-    total_area += std::abs(outer_area);
-    total_moment += outer_sign * outer_moment;
-    for (const Loop& hole : polygon.holes) {
-      double hole_area = 0.0;
-      Point2 hole_moment = Point2::Zero();
-      add_moments(hole, origin, hole_area, hole_moment);
-      const double hole_sign = hole_area >= 0.0 ? 1.0 : -1.0;
-      total_area -= std::abs(hole_area);
-      total_moment -= hole_sign * hole_moment;
-    }
-  }
-  if (!(std::abs(total_area) > 0.0))
-    return origin;
-  return origin + total_moment / total_area;
+  // First moments about the vertices' mean (accurate far from 0); holes count negative
+  // whatever the orientation of the loops.
+  Moments2 moments(1, origin);
+  for (const Polygon& polygon : element.polygons)
+    moments += polygon_moments(polygon, 1, origin);
+  return moments.area() > 0.0 ? moments.centroid() : origin;
 }
 
 std::vector<Point2> step_points(const Model& model) {
