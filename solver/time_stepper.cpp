@@ -2,6 +2,7 @@
 #include "solver/time_stepper.hpp"
 
 #include "contact/contact_system.hpp"
+#include "manifold/simplex_integration.hpp"
 #include "mesh/error.hpp"
 #include "solver/assembler.hpp"
 #include "solver/cholmod_solver.hpp"
@@ -221,22 +222,21 @@ const ContactSystem* TimeStepper::contact() const { return impl_->contact.get();
 
 void TimeStepper::set_rigid_velocities(const std::vector<Point2>& block_velocity,
                                        const std::vector<double>& block_angular_velocity) {
-  // Centre of each block: area-weighted element centroids.
-  std::vector<Point2> centre(model_.blocks.size(), Point2::Zero());
-  std::vector<double> weight(model_.blocks.size(), 0.0);
+  // Centre of each block: its centroid, from the first moments of its elements about the
+  // block's first vertex (accurate far from 0).
+  std::vector<Moments2> moments(model_.blocks.size());
   for (const ModelElement& e : model_.elements) {
+    Moments2& m = moments[at(e.block)];
     for (const Polygon& p : e.polygons) {
-      const double a = area(p);
-      Point2 c = Point2::Zero();
-      for (const Point2& x : p.outer)
-        c += x / static_cast<double>(p.outer.size());
-      centre[at(e.block)] += a * c;
-      weight[at(e.block)] += a;
+      if (m.degree() < 0)
+        m = Moments2(1, p.outer.front());
+      m += polygon_moments(p, 1, m.origin());
     }
   }
+  std::vector<Point2> centre(model_.blocks.size(), Point2::Zero());
   for (std::size_t b = 0; b < centre.size(); ++b) {
-    if (weight[b] > 0.0)
-      centre[b] /= weight[b];
+    if (moments[b].degree() >= 0 && moments[b].area() > 0.0)
+      centre[b] = moments[b].centroid();
   }
   velocity_.setZero();
   for (int c = 0; c < model_.n_covers(); ++c) {

@@ -227,6 +227,27 @@ TEST_P(FreeFall, IsExactAfterOneSecond) {
 
 INSTANTIATE_TEST_SUITE_P(Orders, FreeFall, ::testing::Values(0, 1));
 
+TEST(RigidVelocity, TurnsEachBlockAboutItsCentroid) {
+  // initial_angular_velocity turns a block about its centroid: a 1 x 0.5 plate cut by a
+  // math mesh that does not fit it (cut elements are quadrilaterals and pentagons, whose
+  // vertex means are not their centroids). The velocity omega J (x - c) is linear, so every
+  // cover reproduces it exactly: 1e-12 is rounding.
+  const ElasticMaterial material = elastic(5.0e9, 0.25, 2600.0, PlaneCondition::strain);
+  testing::Setup s =
+      make_setup({rectangle("block", 0.0, 0.0, 1.0, 0.5)}, {}, {}, nullptr, 0.21, material, 1);
+  StepperOptions options;
+  options.time_step = 1e-3;
+  TimeStepper stepper(s.model, Scene{}, options);
+  const double omega = 2.0;
+  stepper.set_rigid_velocities({Point2(0.0, 0.0)}, {omega});
+  for (const Point2& x : {Point2(0.5, 0.25), Point2(1.0, 0.25), Point2(0.1, 0.45)}) {
+    const Point2 v = stepper.velocity_at(s.model.find_element(x, 1e-9), x);
+    const Point2 expected = omega * Point2(-(x.y() - 0.25), x.x() - 0.5);
+    EXPECT_NEAR(v.x(), expected.x(), 1e-12) << x.transpose();
+    EXPECT_NEAR(v.y(), expected.y(), 1e-12) << x.transpose();
+  }
+}
+
 TEST(EnergyCheck, StopsARunWhoseKineticEnergyComesFromNowhere) {
   // A free block, no loads: its kinetic energy is what it starts with, for ever. Started at
   // 2 m/s it keeps that energy (the check must not trip on a run that conserves energy);
