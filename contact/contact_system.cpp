@@ -22,13 +22,6 @@ JointStrength weaker(const JointStrength& a, const JointStrength& b) {
           std::min(a.tensile_strength, b.tensile_strength)};
 }
 
-std::string point_text(const Point2& p) {
-  std::ostringstream out;
-  out.precision(6);
-  out << '(' << p.x() << ", " << p.y() << ')';
-  return out.str();
-}
-
 bool closed(ContactMode m) { return m != ContactMode::open; }
 
 // Gauss-Legendre points on [0, 1]: two for order-0 covers (the squared gap along an edge is
@@ -869,8 +862,8 @@ std::string ContactSystem::describe(int i) const {
   const ContactPoint& p = points_[at(std::clamp(i, 0, n_points() - 1))];
   const Point2& a = boundary_.position[at(p.master)];
   const Point2& b = boundary_.position[at(boundary_.next[at(p.master)])];
-  return "contact of " + point_text(p.slave) + " against the edge " + point_text(a) + "-" +
-         point_text(b);
+  return "contact of " + point_text(p.slave, 6) + " against the edge " + point_text(a, 6) + "-" +
+         point_text(b, 6);
 }
 
 } // namespace nmm

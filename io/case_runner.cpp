@@ -3,6 +3,7 @@
 
 #include "io/gmsh_reader.hpp"
 #include "io/step_output.hpp"
+#include "io/text.hpp"
 #include "io/vtk_writer.hpp"
 #include "manifold/boundary_conditions.hpp"
 #include "mesh/cover_mesher.hpp"
@@ -28,59 +29,17 @@ using Clock = std::chrono::steady_clock;
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-std::string in_quotes(const std::string& name) { return '"' + name + '"'; }
-
-std::string point_text(const Point2& p) {
-  std::ostringstream out;
-  out.precision(10);
-  out << '(' << p.x() << ", " << p.y() << ')';
-  return out.str();
-}
-
 [[noreturn]] void fail(const CaseSpec& spec, int line, const std::string& message) {
   throw InputError(spec.file.string(), line, 0, message);
 }
 
 std::string geometry_name(const CaseSpec& spec) { return spec.geometry.filename().string(); }
 
-/// Edit distance counting a swap of two neighbours as one edit (optimal string alignment),
-/// for "did you mean" (names are short: quadratic is fine).
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  const std::size_t columns = b.size() + 1;
-  std::vector<std::size_t> d((a.size() + 1) * columns);
-  const auto cell = [&](std::size_t i, std::size_t j) -> std::size_t& {
-    return d[i * columns + j];
-  };
-  for (std::size_t i = 0; i <= a.size(); ++i)
-    cell(i, 0) = i;
-  for (std::size_t j = 0; j <= b.size(); ++j)
-    cell(0, j) = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t substitution = a[i - 1] == b[j - 1] ? 0 : 1;
-      cell(i, j) =
-          std::min({cell(i - 1, j) + 1, cell(i, j - 1) + 1, cell(i - 1, j - 1) + substitution});
-      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
-        cell(i, j) = std::min(cell(i, j), cell(i - 2, j - 2) + 1);
-    }
-  }
-  return cell(a.size(), b.size());
-}
-
 template <class Items> std::string did_you_mean(const std::string& name, const Items& items) {
-  std::string best;
-  std::size_t best_distance = std::max<std::size_t>(1, name.size() / 3) + 1;
-  for (const auto& item : items) {
-    const std::size_t d = edit_distance(name, item.name);
-    if (d < best_distance) {
-      best_distance = d;
-      best = item.name;
-    }
-  }
+  std::vector<std::string_view> names;
+  for (const auto& item : items)
+    names.emplace_back(item.name);
+  const std::string_view best = closest(name, names);
   return best.empty() ? std::string() : " (did you mean " + in_quotes(best) + "?)";
 }
 

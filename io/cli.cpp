@@ -8,6 +8,7 @@
 #include "io/demo.hpp"
 #include "io/dependency_info.hpp"
 #include "io/progress.hpp"
+#include "io/text.hpp"
 #include "mesh/error.hpp"
 #include "solver/threads.hpp"
 
@@ -62,10 +63,6 @@ void install_stop_handlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 /// The bundled example `nmm` runs without arguments.
 fs::path bundled_example() { return fs::path(NMM_EXAMPLES_DIR) / "01_cantilever" / "case.toml"; }
 
@@ -96,7 +93,7 @@ int run_command(const RunArguments& args, bool is_bundled_example) {
   options.on_step = [&](const nmm::RunProgress& progress) {
     printer.step(progress, progress.report->step == progress.steps);
   };
-  options.seconds_before = seconds_since(start);
+  options.seconds_before = nmm::seconds_since(start);
   const fs::path dir = nmm::output_dir_of(analysis.spec(), options);
   std::ostringstream what;
   what << "running " << steps << (steps == 1 ? " step" : " steps") << " ("

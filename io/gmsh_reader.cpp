@@ -42,10 +42,6 @@ std::string number_text(double value) {
   return out.str();
 }
 
-std::string point_text(const Point2& p) {
-  return '(' + number_text(p.x()) + ", " + number_text(p.y()) + ')';
-}
-
 std::string tag_list(const std::vector<int>& tags) {
   std::string text;
   const std::size_t shown = std::min<std::size_t>(tags.size(), 12);

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/history.hpp"
 
+#include "io/atomic_file.hpp"
 #include "mesh/error.hpp"
 
 #include <cerrno>
@@ -228,29 +229,12 @@ std::string summary_json(const RunSummary& s) {
 
 void write_summary_json(const std::filesystem::path& file, const RunSummary& summary) {
   const std::string text = summary_json(summary);
-  std::filesystem::path temporary = file;
-  temporary += ".tmp";
-  {
+  write_file_atomically(file, [&](const std::filesystem::path& temporary) {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw InputError("cannot write " + file.string() + ": " + system_reason(errno) +
-                       "; choose a writable output folder with -o DIR or [output] dir");
-    }
     out << text;
     out.flush();
-    if (!out) {
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      throw InputError("cannot write " + file.string() + "; is the disk full?");
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, file, error);
-  if (error) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    throw InputError("cannot write " + file.string() + ": " + error.message());
-  }
+    return static_cast<bool>(out);
+  });
 }
 
 } // namespace nmm

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "io/vtk_writer.hpp"
 
+#include "io/atomic_file.hpp"
+#include "io/text.hpp"
 #include "mesh/error.hpp"
 
 #include <vtkCellArray.h>
@@ -293,59 +295,6 @@ std::vector<int> keyhole_loop(std::span<const Point2> points, const PolygonCell&
 
 namespace {
 
-fs::path temporary_path(const fs::path& file) {
-  fs::path tmp = file;
-  tmp += ".tmp";
-  return tmp;
-}
-
-std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
-
-/// Writes @p file through @p write_to(temporary path) and renames it into place, so a reader
-/// sees either the old file or the complete new one, never a partial file.
-template <class WriteTo> void write_atomically(const fs::path& file, WriteTo&& write_to) {
-  const fs::path directory = file.has_parent_path() ? file.parent_path() : fs::path(".");
-  std::error_code error;
-  const fs::file_status status = fs::status(directory, error);
-  if (!fs::exists(status))
-    throw InputError("cannot write " + quoted(file) + ": the directory " + quoted(directory) +
-                     " does not exist; create it or choose another output directory");
-  if (!fs::is_directory(status))
-    throw InputError("cannot write " + quoted(file) + ": " + quoted(directory) +
-                     " is not a directory; choose another output directory");
-  const fs::path tmp = temporary_path(file);
-  {
-    // Probe first: VTK would report the failure on stderr in its own words only.
-    std::ofstream probe(tmp, std::ios::binary | std::ios::trunc);
-    if (!probe) {
-      const std::string reason = std::error_code(errno, std::generic_category()).message();
-      throw InputError("cannot write " + quoted(file) + " in directory " + quoted(directory) +
-                       ": " + reason +
-                       "; make the directory writable or choose another output directory");
-    }
-  }
-  bool written = false;
-  try {
-    written = write_to(tmp);
-  } catch (...) {
-    fs::remove(tmp, error);
-    throw;
-  }
-  if (!written) {
-    fs::remove(tmp, error);
-    throw InputError("writing " + quoted(file) +
-                     " failed part way; check the free space of the output directory " +
-                     quoted(directory));
-  }
-  fs::rename(tmp, file, error);
-  if (error) {
-    const std::string reason = error.message();
-    fs::remove(tmp, error);
-    throw InputError("cannot replace " + quoted(file) + ": " + reason +
-                     "; remove it or choose another output directory");
-  }
-}
-
 // ----------------------------------------------------------------------------------------
 // VTK conversion
 
@@ -457,7 +406,7 @@ void write_vtu(const fs::path& file, const PolygonMeshData& data) {
   add_arrays(grid->GetCellData(), data.cell_data, static_cast<std::ptrdiff_t>(data.cells.size()),
              "cell");
   add_arrays(grid->GetFieldData(), data.field_data, -1, "field");
-  write_atomically(file, [&](const fs::path& tmp) {
+  write_file_atomically(file, [&](const fs::path& tmp) {
     return write_xml<vtkXMLUnstructuredGridWriter>(grid, tmp);
   });
 }
@@ -472,8 +421,8 @@ void write_vtp_points(const fs::path& file, const PointCloudData& data) {
   add_arrays(poly->GetPointData(), data.point_data, static_cast<std::ptrdiff_t>(data.points.size()),
              "point");
   add_arrays(poly->GetFieldData(), data.field_data, -1, "field");
-  write_atomically(file,
-                   [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp); });
+  write_file_atomically(
+      file, [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp); });
 }
 
 void write_vtp_lines(const fs::path& file, const PolylineData& data) {
@@ -487,8 +436,8 @@ void write_vtp_lines(const fs::path& file, const PolylineData& data) {
   add_arrays(poly->GetCellData(), data.cell_data, static_cast<std::ptrdiff_t>(data.lines.size()),
              "cell");
   add_arrays(poly->GetFieldData(), data.field_data, -1, "field");
-  write_atomically(file,
-                   [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp); });
+  write_file_atomically(
+      file, [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp); });
 }
 
 // ----------------------------------------------------------------------------------------
@@ -558,7 +507,7 @@ void PvdSeries::add(double time, const std::vector<fs::path>& parts) {
 }
 
 void PvdSeries::write() const {
-  write_atomically(pvd_file_, [&](const fs::path& tmp) {
+  write_file_atomically(pvd_file_, [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     out << "<?xml version=\"1.0\"?>\n"
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\""

@@ -17,13 +17,6 @@ void add_local(const ElementDofs& dofs, const ElementVector& local, Eigen::Vecto
     f(dofs(i)) += local(i);
 }
 
-std::string point_text(const Point2& p) {
-  std::ostringstream out;
-  out.precision(6);
-  out << '(' << p.x() << ", " << p.y() << ')';
-  return out.str();
-}
-
 } // namespace
 
 std::vector<SupportPoint> curve_support_points(const Model& model,
@@ -68,7 +61,7 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
       if ((component == 0 && !s.fix_x) || (component == 1 && !s.fix_y))
         continue;
       LinearConstraint row;
-      row.origin = s.origin + " at " + point_text(s.point.position);
+      row.origin = s.origin + " at " + point_text(s.point.position, 6);
       const Point2 remaining = s.ramp.at(time) * s.displacement - (s.point.position - s.start);
       row.value = component == 0 ? remaining.x() : remaining.y();
       for (int a = 0; a < shape.n_shapes(); ++a) {

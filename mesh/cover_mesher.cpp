@@ -62,13 +62,6 @@ double rounded(const Kernel::FT& value) {
 
 Point2 to_point2(const ExactPoint& p) { return {rounded(p.x()), rounded(p.y())}; }
 
-std::string point_text(const Point2& p) {
-  std::ostringstream out;
-  out.precision(10);
-  out << '(' << p.x() << ", " << p.y() << ')';
-  return out.str();
-}
-
 /// An input segment of the global arrangement.
 struct SourceSegment {
   Point2 a;

@@ -2,8 +2,16 @@
 #include "mesh/geometry.hpp"
 
 #include <cmath>
+#include <sstream>
 
 namespace nmm {
+
+std::string point_text(const Point2& p, int digits) {
+  std::ostringstream out;
+  out.precision(digits);
+  out << '(' << p.x() << ", " << p.y() << ')';
+  return out.str();
+}
 
 void BoundingBox::extend(const Point2& p) {
   if (is_empty()) {

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include <span>
+#include <string>
 #include <vector>
 
 namespace nmm {
@@ -33,6 +34,9 @@ struct BoundingBox {
   /// max - min; (0,0) for a single point, meaningless when empty.
   [[nodiscard]] Point2 size() const { return max - min; }
 };
+
+/// "(x, y)" with @p digits significant digits, for messages.
+[[nodiscard]] std::string point_text(const Point2& p, int digits = 10);
 
 /// Signed area of a loop by the shoelace formula (Shi 1997, simplex integration eq. 25):
 /// positive when counter-clockwise. Computed about the first vertex so that a small loop

@@ -35,13 +35,6 @@ template <class Items> std::string names_of(const Items& items) {
   return result.empty() ? std::string("(none)") : result;
 }
 
-std::string point_text(const Point2& p) {
-  std::ostringstream out;
-  out.precision(10);
-  out << '(' << p.x() << ", " << p.y() << ')';
-  return out.str();
-}
-
 [[noreturn]] void fail(const PhysicalMesh& physical, const std::string& message) {
   throw InputError(physical.source.empty() ? message : physical.source + ": " + message);
 }

@@ -33,13 +33,6 @@ void lap(Clock::time_point& start, double& total) {
   start = now;
 }
 
-std::string point_text(const Point2& p) {
-  std::ostringstream out;
-  out.precision(6);
-  out << '(' << p.x() << ", " << p.y() << ')';
-  return out.str();
-}
-
 /// The reduction of a coupling whose unknowns are not all free: d_local = T z + t0.
 struct Reduction {
   std::vector<int> reduced;  ///< reduced unknowns z, sorted
@@ -101,7 +94,7 @@ singular_message(const Model& model, const DofMap& map, long column, SolveStatus
       if (e.block == cover.block)
         material = e.material;
     }
-    message << " at the unknowns of the cover near " << point_text(cover.position)
+    message << " at the unknowns of the cover near " << point_text(cover.position, 6)
             << (material >= 0 ? " (material \"" + model.materials[at(material)].name + "\")"
                               : std::string())
             << ": this body can move freely in " << ((d % 2) == 0 ? "x" : "y")
@@ -128,7 +121,7 @@ std::string energy_message(
   message << "step " << step << ": the kinetic energy (" << kinetic
           << " J) exceeds ten times what the run started with plus the work of the loads ("
           << budget << " J), even with the time step cut; the fastest cover (" << speed
-          << " m/s) is near " << point_text(model.covers[at(fastest)].position)
+          << " m/s) is near " << point_text(model.covers[at(fastest)].position, 6)
           << ": energy is coming from the contact springs there; try a smaller time_step or "
              "max_step_displacement, a smaller penalty, or a larger cover size near that point";
   return message.str();
@@ -197,7 +190,7 @@ TimeStepper::TimeStepper(Model& model,
       if (held.count(element.block) == 0) {
         throw InputError(
             "the body of material \"" + model_.materials[at(element.material)].name +
-            "\" containing " + point_text(element.polygons.front().outer.front()) +
+            "\" containing " + point_text(element.polygons.front().outer.front(), 6) +
             " can move freely: nothing holds it and a static analysis has no inertia to "
             "resist; add a [[boundary]] support on it, or use [analysis] kind = \"dynamic\"");
       }
