@@ -290,24 +290,36 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     p.key = g.key;
     p.slave_edge = c.slave;
     p.master = c.master;
-    const Point2& ma = boundary_.position[at(c.master)];
-    const Point2& mb = boundary_.position[at(boundary_.next[at(c.master)])];
+    if (!g.edge && c.alternative_master >= 0) {
+      // Two convex angles (Shi 3.2 [1]): the contact is the angle-to-edge pair whose entrance
+      // line is passed first (the smaller distance at the start of the step). Chosen once
+      // here, so that the springs, the anchor and its transfer all refer to one edge.
+      const auto distance = [&](int vertex, int edge) {
+        const Point2& a = boundary_.position[at(edge)];
+        const Point2& b = boundary_.position[at(boundary_.next[at(edge)])];
+        return (boundary_.position[at(vertex)] - a).dot(perp(b - a)) / (b - a).norm();
+      };
+      if (distance(c.alternative_slave, c.alternative_master) < distance(c.slave, c.master)) {
+        p.slave_edge = c.alternative_slave;
+        p.master = c.alternative_master;
+      }
+    }
+    const Point2& ma = boundary_.position[at(p.master)];
+    const Point2& mb = boundary_.position[at(boundary_.next[at(p.master)])];
     const Point2 tangent = (mb - ma).normalized();
     const Point2 normal = perp(mb - ma).normalized();
     std::vector<double> g0; // gap at the start of the step: at the point, or along the overlap
     if (!g.edge) {
-      p.slave = boundary_.position[at(c.slave)];
-      p.alternative_slave_vertex = c.alternative_slave;
-      p.alternative_master = c.alternative_master;
-      const int v = c.slave;
+      const int v = p.slave_edge;
+      p.slave = boundary_.position[at(v)];
       p.length = 0.5 * ((boundary_.position[at(boundary_.next[at(v)])] - p.slave).norm() +
                         (boundary_.position[at(boundary_.previous[at(v)])] - p.slave).norm());
       p.stiffness = options_.penalty;
       p.strength =
           weaker(weaker(edge_strength_[at(v)], edge_strength_[at(boundary_.previous[at(v)])]),
-                 edge_strength_[at(c.master)]);
-      p.bonded = edge_bonded_[at(v)] != 0 && edge_bonded_[at(c.master)] != 0;
-      p.anchor = projection(c.master, p.slave);
+                 edge_strength_[at(p.master)]);
+      p.bonded = edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
+      p.anchor = projection(p.master, p.slave);
       g.count = 1;
       points_.push_back(p);
       g0.push_back((p.slave - ma).dot(normal));
@@ -409,11 +421,11 @@ void ContactSystem::set_hold_shear(bool hold) {
   }
 }
 
-ContactSystem::Kinematics
-ContactSystem::kinematics(const Model& model, const ContactPoint& p, bool alternative) const {
-  const int slave_edge = alternative ? p.alternative_slave_vertex : p.slave_edge;
-  const int master = alternative ? p.alternative_master : p.master;
-  const Point2 slave = alternative ? boundary_.position[at(slave_edge)] : p.slave;
+ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
+                                                    const ContactPoint& p) const {
+  const int slave_edge = p.slave_edge;
+  const int master = p.master;
+  const Point2& slave = p.slave;
   const int slave_element = edge_element_[at(slave_edge)];
   const int master_element = edge_element_[at(master)];
   Kinematics k;
@@ -466,19 +478,12 @@ double ContactSystem::gap_at(const Model& model,
   const Point2& a = boundary_.position[at(p.slave_edge)];
   const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
   p.slave = a + u * (d - a);
-  return kinematics(model, p, false).gap(raw);
+  return kinematics(model, p).gap(raw);
 }
 
 std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
   const ContactPoint& p = points_[at(i)];
-  std::vector<int> dofs = kinematics(model, p, false).dofs;
-  if (p.alternative_master >= 0) {
-    for (const int d : kinematics(model, p, true).dofs) {
-      if (std::find(dofs.begin(), dofs.end(), d) == dofs.end())
-        dofs.push_back(d);
-    }
-  }
-  return dofs;
+  return kinematics(model, p).dofs;
 }
 
 void ContactSystem::contribution(const Model& model,
@@ -492,11 +497,7 @@ void ContactSystem::contribution(const Model& model,
   load = Eigen::VectorXd::Zero(n);
   if (p.mode == ContactMode::open)
     return;
-  // Two convex angles: the spring sits on the entrance line passed first (smaller gap).
-  bool alternative = false;
-  if (p.alternative_master >= 0)
-    alternative = kinematics(model, p, true).g0 < kinematics(model, p, false).g0;
-  const Kinematics k = kinematics(model, p, alternative);
+  const Kinematics k = kinematics(model, p);
   Eigen::VectorXd hn = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd hs = Eigen::VectorXd::Zero(n);
   for (std::size_t j = 0; j < k.dofs.size(); ++j) {
@@ -548,10 +549,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     measure.assign(at(g.count), Measure{});
     for (int q = 0; q < g.count; ++q) {
       ContactPoint& p = points_[at(g.first + q)];
-      bool alternative = false;
-      if (p.alternative_master >= 0)
-        alternative = kinematics(model, p, true).g0 < kinematics(model, p, false).g0;
-      const Kinematics k = kinematics(model, p, alternative);
+      const Kinematics k = kinematics(model, p);
       const double ds = k.tangential(raw);
       measure[at(q)] = {k.gap(raw), k.s0 + ds, ds};
       p.gap = measure[at(q)].gap;
@@ -673,7 +671,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       if (!closed(before) && closed(after)) {
         // Locked at its entrance position (Shi eq. 3.4-3.6): where the gap crosses zero, a
         // fraction t0 of the step's tangential motion along the edge.
-        const Kinematics k = kinematics(model, p, false);
+        const Kinematics k = kinematics(model, p);
         const double t0 = k.g0 > 0.0 ? std::clamp(k.g0 / (k.g0 - m.gap), 0.0, 1.0) : 0.0;
         p.anchor = projection(p.master, p.slave) + t0 * m.ds / length;
       } else if (before == ContactMode::slide && after == ContactMode::lock) {
@@ -804,7 +802,7 @@ void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
       double anchor = p.anchor;
       if (p.mode == ContactMode::slide) {
         // The next lock anchors where the slave point ends up on the edge.
-        const Kinematics k = kinematics(model, p, false);
+        const Kinematics k = kinematics(model, p);
         const double l = (boundary_.position[at(boundary_.next[at(p.master)])] -
                           boundary_.position[at(p.master)])
                              .norm();

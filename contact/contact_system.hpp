@@ -65,10 +65,7 @@ struct ContactPoint {
   /// Edge-to-edge: position of the slave point on its edge (0 at its first vertex, 1 at the
   /// next); the same material point from step to step.
   double u = 0.0;
-  int master = -1; ///< master edge (entrance line)
-  /// Alternative configuration of a two-convex-angle contact (Shi 3.2 [1]), or -1.
-  int alternative_slave_vertex = -1;
-  int alternative_master = -1;
+  int master = -1;        ///< master edge (entrance line)
   double length = 0.0;    ///< tributary length for strengths and integrated stiffness, m
   double stiffness = 0.0; ///< normal and shear spring stiffness, N/m
   JointStrength strength; ///< of the pair (the weaker of the two sides)
@@ -207,8 +204,7 @@ private:
     std::vector<std::pair<double, double>> anchors;
   };
 
-  [[nodiscard]] Kinematics
-  kinematics(const Model& model, const ContactPoint& p, bool alternative) const;
+  [[nodiscard]] Kinematics kinematics(const Model& model, const ContactPoint& p) const;
   /// Normal gap at slave parameter u of edge group g after the step displacement raw.
   [[nodiscard]] double
   gap_at(const Model& model, const Group& g, double u, const Eigen::VectorXd& raw) const;
