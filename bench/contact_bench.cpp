@@ -125,27 +125,6 @@ std::unique_ptr<nmm::ContactSystem> make_contact(const nmm::Model& model, double
   return std::make_unique<nmm::ContactSystem>(options, std::move(strengths), std::move(bonds));
 }
 
-/// The boundary as ContactSystem::begin_step flattens it.
-nmm::ContactBoundary make_boundary(const nmm::Model& model) {
-  nmm::ContactBoundary b;
-  for (std::size_t l = 0; l < model.loops.size(); ++l) {
-    const nmm::BoundaryLoop& loop = model.loops[l];
-    const int base = b.n_vertices();
-    const int n = loop.n_vertices();
-    for (int k = 0; k < n; ++k) {
-      b.position.push_back(loop.vertices[static_cast<std::size_t>(k)]);
-      b.next.push_back(base + (k + 1) % n);
-      b.previous.push_back(base + (k + n - 1) % n);
-      b.loop.push_back(static_cast<int>(l));
-      b.block.push_back(loop.block);
-    }
-  }
-  b.block_area.assign(model.blocks.size(), 0.0);
-  for (const nmm::ModelElement& e : model.elements)
-    b.block_area[static_cast<std::size_t>(e.block)] += e.area;
-  return b;
-}
-
 struct Detection {
   bool measured = false;
   double distance = 0.0;
@@ -306,7 +285,7 @@ Row run_wall(int courses, int bricks, int steps, const Settings& settings) {
     }
   }
   row.contact_edges = static_cast<long>(touching.size());
-  const nmm::ContactBoundary boundary = make_boundary(model);
+  const nmm::ContactBoundary boundary = nmm::contact_boundary(model);
   row.run_distance = time_detection(boundary, keep, 2.0 * limit, 3);
   // The case-file default distance grows with the model: one run once it takes seconds.
   if (settings.default_distance)

@@ -206,36 +206,42 @@ void ContactSystem::place(Group& g, double from, double to, const AnchorOf& anch
   }
 }
 
+ContactBoundary contact_boundary(const Model& model) {
+  ContactBoundary boundary;
+  for (std::size_t l = 0; l < model.loops.size(); ++l) {
+    const BoundaryLoop& loop = model.loops[l];
+    const int base = boundary.n_vertices();
+    const int n = loop.n_vertices();
+    for (int k = 0; k < n; ++k) {
+      boundary.position.push_back(loop.vertices[at(k)]);
+      boundary.next.push_back(base + (k + 1) % n);
+      boundary.previous.push_back(base + (k + n - 1) % n);
+      boundary.loop.push_back(static_cast<int>(l));
+      boundary.block.push_back(loop.block);
+    }
+  }
+  // Block areas as meshed: the choice of master edges never changes with the deformation
+  // (contact keys stay the same).
+  for (const Block& block : model.blocks)
+    boundary.block_area.push_back(block.area);
+  return boundary;
+}
+
 void ContactSystem::begin_step(const Model& model, double max_step_displacement) {
   ++counters_.searches;
-  // The boundary at the start of the step.
-  boundary_ = ContactBoundary{};
+  // The boundary at the start of the step, and what each edge carries.
+  boundary_ = contact_boundary(model);
   edge_element_.clear();
   edge_strength_.clear();
   edge_bonded_.clear();
   for (std::size_t l = 0; l < model.loops.size(); ++l) {
     const BoundaryLoop& loop = model.loops[l];
-    const int base = boundary_.n_vertices();
-    const int n = loop.n_vertices();
-    for (int k = 0; k < n; ++k) {
-      boundary_.position.push_back(loop.vertices[at(k)]);
-      boundary_.next.push_back(base + (k + 1) % n);
-      boundary_.previous.push_back(base + (k + n - 1) % n);
-      boundary_.loop.push_back(static_cast<int>(l));
-      boundary_.block.push_back(loop.block);
+    for (int k = 0; k < loop.n_vertices(); ++k) {
       edge_element_.push_back(loop.edges[at(k)].element);
       edge_strength_.push_back(strength_of_edge_[l][at(k)]);
       edge_bonded_.push_back(bonded_edge_[l][at(k)] ? 1 : 0);
     }
   }
-  // Block areas of the first step: the choice of master edges never changes with the
-  // deformation (contact keys stay the same).
-  if (block_area_.empty()) {
-    block_area_.assign(model.blocks.size(), 0.0);
-    for (const ModelElement& e : model.elements)
-      block_area_[at(e.block)] += e.area;
-  }
-  boundary_.block_area = block_area_;
   DetectionOptions detection = options_.detection;
   detection.distance = 2.0 * max_step_displacement;
   detection.penetration = 0.1 * detection.distance;
@@ -829,17 +835,10 @@ double ContactSystem::max_penetration() const {
 }
 
 std::vector<ContactSystem::Place> ContactSystem::current_places(const Model& model) const {
-  // The boundary numbered as begin_step() numbers it (loop after loop), at its current place.
-  std::vector<Point2> position;
-  std::vector<int> next;
-  for (const BoundaryLoop& loop : model.loops) {
-    const int base = static_cast<int>(position.size());
-    const int n = loop.n_vertices();
-    for (int k = 0; k < n; ++k) {
-      position.push_back(loop.vertices[at(k)]);
-      next.push_back(base + (k + 1) % n);
-    }
-  }
+  // The boundary numbered as begin_step() numbers it, at its current place.
+  const ContactBoundary now = contact_boundary(model);
+  const std::vector<Point2>& position = now.position;
+  const std::vector<int>& next = now.next;
   NMM_ASSERT(position.size() == boundary_.position.size(), "the boundary changed its vertices");
   std::vector<Place> result;
   result.reserve(points_.size());

@@ -27,6 +27,10 @@ struct JointStrength {
 /// The three contact modes of Shi's open-close iteration (1997, 8.2).
 enum class ContactMode : std::uint8_t { open, slide, lock };
 
+/// The boundary loops of @p model flattened for detection, loop after loop (vertex k of loop
+/// l is the edge from it to the next vertex), with the block areas as meshed.
+[[nodiscard]] ContactBoundary contact_boundary(const Model& model);
+
 /// Settings of the contact system.
 struct ContactOptions {
   /// Normal and shear spring stiffness of an angle-to-edge contact (Shi's p), N/m.
@@ -221,7 +225,6 @@ private:
   std::vector<JointStrength> edge_strength_;
   std::vector<char> edge_bonded_;
   int gauss_ = 2;
-  std::vector<double> block_area_;
   std::vector<Group> groups_;
   std::vector<ContactPoint> points_;
   /// Closed contacts of the last step, by key.

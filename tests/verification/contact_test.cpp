@@ -373,16 +373,9 @@ TEST(RotatingTriangle, PenetrationInTheEquationsIsThePenetrationOfTheMovedGeomet
   for (int step = 0; step < 19; ++step) {
     stepper.step(1e9);
     // The moved boundary, numbered as the contact system numbers it (loop after loop).
-    std::vector<Point2> position;
-    std::vector<int> next;
-    for (const BoundaryLoop& loop : s.model.loops) {
-      const int base = static_cast<int>(position.size());
-      const int n = loop.n_vertices();
-      for (int k = 0; k < n; ++k) {
-        position.push_back(loop.vertices[static_cast<std::size_t>(k)]);
-        next.push_back(base + (k + 1) % n);
-      }
-    }
+    const ContactBoundary moved = contact_boundary(s.model);
+    const std::vector<Point2>& position = moved.position;
+    const std::vector<int>& next = moved.next;
     for (const ContactPoint& p : stepper.contact()->points()) {
       if (p.mode == ContactMode::open)
         continue;
