@@ -216,7 +216,6 @@ ContactBoundary contact_boundary(const Model& model) {
       boundary.position.push_back(loop.vertices[at(k)]);
       boundary.next.push_back(base + (k + 1) % n);
       boundary.previous.push_back(base + (k + n - 1) % n);
-      boundary.loop.push_back(static_cast<int>(l));
       boundary.block.push_back(loop.block);
     }
   }
@@ -228,7 +227,6 @@ ContactBoundary contact_boundary(const Model& model) {
 }
 
 void ContactSystem::begin_step(const Model& model, double max_step_displacement) {
-  ++counters_.searches;
   // The boundary at the start of the step, and what each edge carries.
   boundary_ = contact_boundary(model);
   edge_element_.clear();
@@ -348,7 +346,6 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       p.bonded = edge_bonded_[at(c.slave)] != 0 && edge_bonded_[at(c.master)] != 0;
       g.count = gauss_;
       for (int q = 0; q < gauss_; ++q) {
-        p.gauss = q;
         points_.push_back(p);
       }
       for (const double u : {g.lo, g.hi})

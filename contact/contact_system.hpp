@@ -62,8 +62,7 @@ struct ContactOptions {
 /// One contact point: an angle against its entrance line, or one Gauss point of an
 /// edge-to-edge pair, with its own state.
 struct ContactPoint {
-  std::uint64_t key = 0;         ///< identity of the contact (ContactCandidate::key) ...
-  int gauss = 0;                 ///< ... and of the point within it
+  std::uint64_t key = 0;         ///< identity of the contact (ContactCandidate::key)
   int slave_edge = -1;           ///< the edge (element) the slave point moves with
   Point2 slave = Point2::Zero(); ///< slave point at the start of the step
   /// Edge-to-edge: position of the slave point on its edge (0 at its first vertex, 1 at the
@@ -98,7 +97,6 @@ struct ModeUpdate {
 
 /// Counters for summary.json and benchmarks.
 struct ContactCounters {
-  long searches = 0;
   long points = 0; ///< summed over steps
   long chatter_holds = 0;
   long bonds_broken = 0;

@@ -18,7 +18,6 @@ struct ContactBoundary {
   std::vector<Point2> position; ///< current position of each vertex
   std::vector<int> next;        ///< next vertex of the same loop
   std::vector<int> previous;    ///< previous vertex of the same loop
-  std::vector<int> loop;        ///< loop of each vertex
   std::vector<int> block;       ///< block of the loop of each vertex
   /// Area of each block (edge-to-edge contacts take the larger block's edge as master); may
   /// be empty (the higher edge id is the master).

@@ -22,7 +22,6 @@ ContactBoundary boundary_of(const std::vector<std::vector<Point2>>& loops) {
       b.position.push_back(loops[l][static_cast<std::size_t>(k)]);
       b.next.push_back(base + (k + 1) % n);
       b.previous.push_back(base + (k + n - 1) % n);
-      b.loop.push_back(static_cast<int>(l));
       b.block.push_back(static_cast<int>(l));
     }
   }
