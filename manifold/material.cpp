@@ -23,10 +23,6 @@ Eigen::Matrix3d elasticity_matrix(const ElasticMaterial& material) {
   return d;
 }
 
-double out_of_plane_stress(const ElasticMaterial& material, double sxx, double syy) {
-  return material.plane == PlaneCondition::strain ? material.poisson * (sxx + syy) : 0.0;
-}
-
 void validate_material(const ElasticMaterial& material) {
   auto fail = [&](const std::string& what) {
     throw InputError("material \"" + material.name + "\": " + what);

@@ -35,9 +35,6 @@ struct ElasticMaterial {
 /// @pre validate_material() passed.
 [[nodiscard]] Eigen::Matrix3d elasticity_matrix(const ElasticMaterial& material);
 
-/// Plane-strain out-of-plane stress szz = nu (sxx + syy); 0 for plane stress.
-[[nodiscard]] double out_of_plane_stress(const ElasticMaterial& material, double sxx, double syy);
-
 /// Checks E > 0, -1 < nu < 0.5 (also for plane stress: nu = 0.5 would make the plate
 /// incompressible and the penalty-contact conditioning meaningless), density >= 0,
 /// thickness > 0, all finite. @throws InputError naming the material.

@@ -206,9 +206,4 @@ ElementVector NmmElementIntegrals::initial_stress_load(const LinearField3& stres
   return f;
 }
 
-Eigen::Vector3d NmmElementIntegrals::integral(const LinearField3& field) const {
-  const LinearField3 local = field.about(shape_.origin());
-  return local.coefficients * first_.head<3>();
-}
-
 } // namespace nmm

@@ -141,8 +141,6 @@ public:
   /// @p thickness.
   [[nodiscard]] ElementVector initial_stress_load(const LinearField3& stress,
                                                   double thickness) const;
-  /// ∫ sigma over the element, for averages (a vector of the three integrals).
-  [[nodiscard]] Eigen::Vector3d integral(const LinearField3& field) const;
 
 private:
   const NmmShape& shape_;

@@ -92,14 +92,4 @@ MathMesh make_regular_math_mesh(const BoundingBox& box, double size, double max_
   return mesh;
 }
 
-std::vector<std::vector<int>> node_stars(const MathMesh& mesh) {
-  std::vector<std::vector<int>> stars(mesh.nodes.size());
-  for (int t = 0; t < mesh.n_triangles(); ++t) {
-    for (const int n : mesh.triangles[static_cast<std::size_t>(t)]) {
-      stars[static_cast<std::size_t>(n)].push_back(t);
-    }
-  }
-  return stars;
-}
-
 } // namespace nmm

@@ -38,7 +38,4 @@ inline constexpr double default_max_math_triangles = 5.0e6;
                                               double size,
                                               double max_triangles = default_max_math_triangles);
 
-/// For every node, the triangles holding it (its star, Shi's math cover).
-[[nodiscard]] std::vector<std::vector<int>> node_stars(const MathMesh& mesh);
-
 } // namespace nmm
