@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <span>
 
 namespace nmm {
@@ -327,7 +328,20 @@ void Model::accumulate_stress(const Eigen::VectorXd& raw) {
 void Model::move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points) {
   NMM_ASSERT(raw.size() == n_dofs(), "wrong size of the displacement vector");
   // Everything is evaluated with the shapes of the start of the step, so covers move last.
-  auto moved = [&](int e, const Point2& x) { return Point2(x + displacement(e, x, raw)); };
+  // Consecutive boundary points mostly share an element: its shape is built once for them.
+  int cached = -1;
+  std::optional<NmmShape> cached_shape;
+  ElementVector cached_values;
+  auto moved = [&](int e, const Point2& x) {
+    if (e != cached) {
+      cached = e;
+      cached_shape.emplace(shape(e));
+      cached_values = element_values(e, raw);
+    }
+    return Point2(x +
+                  cached_shape->displacement_at(
+                      x, {cached_values.data(), static_cast<std::size_t>(cached_values.size())}));
+  };
   for (int e = 0; e < n_elements(); ++e) {
     ModelElement& element = elements[at(e)];
     const NmmShape s = shape(e);
