@@ -74,15 +74,22 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
   return rows;
 }
 
-ElementMatrix support_spring(const Model& model, const SupportPoint& support, double stiffness) {
+SupportSpring
+support_spring(const Model& model, const SupportPoint& support, double stiffness, double time) {
   const InterpolationMatrix t =
       model.shape(support.point.element).interpolation_at(support.point.position);
-  ElementMatrix k = ElementMatrix::Zero(t.cols(), t.cols());
-  if (support.fix_x)
-    k += stiffness * t.row(0).transpose() * t.row(0);
-  if (support.fix_y)
-    k += stiffness * t.row(1).transpose() * t.row(1);
-  return k;
+  const Point2 remaining =
+      support.ramp.at(time) * support.displacement - (support.point.position - support.start);
+  SupportSpring spring{ElementMatrix::Zero(t.cols(), t.cols()), ElementVector::Zero(t.cols())};
+  if (support.fix_x) {
+    spring.stiffness += stiffness * t.row(0).transpose() * t.row(0);
+    spring.load += stiffness * remaining.x() * t.row(0).transpose();
+  }
+  if (support.fix_y) {
+    spring.stiffness += stiffness * t.row(1).transpose() * t.row(1);
+    spring.load += stiffness * remaining.y() * t.row(1).transpose();
+  }
+  return spring;
 }
 
 ElementVector element_load(const Model& model,
@@ -98,22 +105,6 @@ ElementVector element_load(const Model& model,
   const ModelElement& e = model.elements[at(element)];
   if (!e.stress.coefficients.isZero())
     f += integrals.initial_stress_load(e.stress, material.thickness_factor());
-  return f;
-}
-
-Eigen::VectorXd support_spring_load(const Model& model,
-                                    const SupportPoint& support,
-                                    double stiffness,
-                                    double time) {
-  const Eigen::MatrixXd t =
-      model.shape(support.point.element).interpolation_at(support.point.position);
-  const Point2 remaining =
-      support.ramp.at(time) * support.displacement - (support.point.position - support.start);
-  ElementVector f = ElementVector::Zero(t.cols());
-  if (support.fix_x)
-    f += stiffness * remaining.x() * t.row(0).transpose();
-  if (support.fix_y)
-    f += stiffness * remaining.y() * t.row(1).transpose();
   return f;
 }
 

@@ -96,15 +96,15 @@ struct CurveLoad {
 [[nodiscard]] std::vector<LinearConstraint>
 support_constraints(const Model& model, const std::vector<SupportPoint>& supports, double time);
 
-/// The spring matrix of a penalty support point: stiffness (Tx^T Tx and/or Ty^T Ty) on
-/// the element's raw unknowns (Shi eq. 2.27).
-[[nodiscard]] ElementMatrix
-support_spring(const Model& model, const SupportPoint& support, double stiffness);
-
-/// The load of a penalty support pulling its point towards its imposed displacement at
-/// @p time: stiffness T^T (ramp(time) u_imposed - (x - x_start)) on the held components.
-[[nodiscard]] Eigen::VectorXd
-support_spring_load(const Model& model, const SupportPoint& support, double stiffness, double time);
+/// A penalty support point on its element's raw unknowns (Shi eq. 2.27).
+struct SupportSpring {
+  ElementMatrix stiffness; ///< stiffness (Tx^T Tx and/or Ty^T Ty)
+  /// The load pulling the point towards its imposed displacement at the time asked for:
+  /// stiffness T^T (ramp(time) u_imposed - (x - x_start)) on the held components.
+  ElementVector load;
+};
+[[nodiscard]] SupportSpring
+support_spring(const Model& model, const SupportPoint& support, double stiffness, double time);
 
 /// The local load vector of element @p element at time @p time from its integrals: every
 /// body load (Shi eq. 2.14, density times acceleration) and its initial-stress load

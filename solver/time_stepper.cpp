@@ -477,13 +477,11 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     }
     for (std::size_t s = 0; s < spring_of.size(); ++s) {
       const SupportPoint& support = scene_.supports[at(spring_of[s])];
-      const ElementMatrix spring = support_spring(model_, support, options_.spring_stiffness);
-      const ElementVector pull =
-          support_spring_load(model_, support, options_.spring_stiffness, t1);
+      const SupportSpring spring = support_spring(model_, support, options_.spring_stiffness, t1);
       const ElementDofs dofs = model_.element_dofs(support.point.element);
       for (Eigen::Index i = 0; i < dofs.size(); ++i)
-        f(dofs(i)) += pull(i);
-      scatter(static_cast<int>(model_.elements.size() + s), spring,
+        f(dofs(i)) += spring.load(i);
+      scatter(static_cast<int>(model_.elements.size() + s), spring.stiffness,
               transform_of[at(support.point.element)]);
     }
     lap(clock, counters_.seconds_assembly);
