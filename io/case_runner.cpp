@@ -13,6 +13,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <regex>
 #include <set>
@@ -423,17 +424,18 @@ std::unique_ptr<ContactSystem> CaseAnalysis::make_contact_system(double penalty)
   const auto strength_of = [&](const JointProperties& p) {
     return JointStrength{p.friction_angle_degrees * degrees, p.cohesion, p.tensile_strength};
   };
+  std::map<int, const JointProperties*> joint_of_curve;
+  for (std::size_t j = 0; j < geometry_.joint_curves.size(); ++j)
+    joint_of_curve.emplace(geometry_.joint_curves[j], &spec_.joints[j].properties);
   std::vector<std::vector<JointStrength>> strengths;
   std::vector<std::vector<bool>> bonded;
   for (const BoundaryLoop& loop : model_.loops) {
     std::vector<JointStrength> s;
     std::vector<bool> b;
     for (const BoundaryEdge& edge : loop.edges) {
-      const JointProperties* properties = &spec_.contact;
-      for (std::size_t j = 0; j < geometry_.joint_curves.size(); ++j) {
-        if (edge.joint >= 0 && geometry_.joint_curves[j] == edge.joint)
-          properties = &spec_.joints[j].properties;
-      }
+      const auto joint = joint_of_curve.find(edge.joint);
+      const JointProperties* properties =
+          joint != joint_of_curve.end() ? joint->second : &spec_.contact;
       s.push_back(strength_of(*properties));
       b.push_back(edge.joint >= 0 &&
                   (properties->cohesion > 0.0 || properties->tensile_strength > 0.0));
@@ -556,7 +558,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     monitor_names.push_back(m.name);
   HistoryWriter history(dir / "history.csv", monitor_names);
   PvdSeries pvd(dir / "case.pvd");
-  if (spec.analysis.initial_equilibrium && stepper.counters().steps == 0)
+  if (spec.analysis.initial_equilibrium)
     analysis.equilibrate();
   const std::vector<Point2> initial_points = step_points(model);
   long written = -1;
