@@ -213,8 +213,8 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
                                     static_cast<double>(spec.cover_mesh.max_triangles));
   } else {
     phase("meshing " + geometry_name(spec) + " with gmsh");
-    g.math = make_gmsh_math_mesh(spec.geometry, spec.cover_mesh.size,
-                                 static_cast<double>(spec.cover_mesh.max_triangles), read_options);
+    g.math = make_gmsh_math_mesh(spec.geometry, g.physical, spec.cover_mesh.size,
+                                 static_cast<double>(spec.cover_mesh.max_triangles));
   }
   g.seconds_math_mesh = seconds_since(start);
   phase("math mesh: " + std::to_string(g.math.n_triangles()) + " triangles, " +

@@ -978,11 +978,9 @@ PhysicalMesh read_physical_mesh(const std::filesystem::path& file,
   return read_open_model(name, options);
 }
 
-MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
-                             double size,
-                             double max_triangles,
-                             const GeometryReadOptions& options) {
-  const std::string name = file.string();
+namespace {
+
+void check_math_mesh_size(const std::string& name, double size, double max_triangles) {
   if (!(size > 0.0) || !std::isfinite(size)) {
     throw InputError(name + ": cover mesh size must be a positive number of metres, got " +
                      number_text(size));
@@ -991,45 +989,66 @@ MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
     throw InputError(name + ": [cover_mesh] max_triangles must be positive, got " +
                      number_text(max_triangles));
   }
+}
+
+} // namespace
+
+MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
+                             double size,
+                             double max_triangles,
+                             const GeometryReadOptions& options) {
+  const std::string name = file.string();
+  check_math_mesh_size(name, size, max_triangles);
   check_tolerance(name, options);
   const GmshFileKind kind = check_geometry_file(file);
+  if (kind != GmshFileKind::msh)
+    return make_gmsh_math_mesh(file, read_physical_mesh(file, options), size, max_triangles);
+
+  // The file's own elements: the physical mesh read from the same file has these
+  // triangles' boundary edges as its loops, so they cover the material exactly.
   std::optional<GmshSession> own_session;
   if (!GmshSession::is_alive())
     own_session.emplace();
   open_model(file, kind);
-
-  if (kind == GmshFileKind::msh) {
-    // The file's own elements: the physical mesh read from the same file has these
-    // triangles' boundary edges as its loops, so they cover the material exactly.
-    const std::vector<PhysicalGroup> groups = physical_groups(2, "surface");
-    if (groups.empty())
-      throw_no_physical_surface(name);
-    std::set<int> surfaces;
-    for (const PhysicalGroup& group : groups)
-      surfaces.insert(group.entities.begin(), group.entities.end());
-    MathMesh mesh = collect_triangles(name, std::vector<int>(surfaces.begin(), surfaces.end()));
-    if (mesh.triangles.empty())
-      throw InputError(name + ": the Physical Surfaces have no triangles or quadrangles; mesh "
-                              "the geometry in 2D (gmsh -2) before saving the .msh");
-    if (static_cast<double>(mesh.n_triangles()) > max_triangles) {
-      double area = 0.0;
-      for (const auto& t : mesh.triangles) {
-        area += std::abs(signed_area(std::array<Point2, 3>{
-            mesh.nodes[static_cast<std::size_t>(t[0])], mesh.nodes[static_cast<std::size_t>(t[1])],
-            mesh.nodes[static_cast<std::size_t>(t[2])]}));
-      }
-      throw_too_many_triangles(name, size, mesh.n_triangles(), area, max_triangles, "");
+  const std::vector<PhysicalGroup> groups = physical_groups(2, "surface");
+  if (groups.empty())
+    throw_no_physical_surface(name);
+  std::set<int> surfaces;
+  for (const PhysicalGroup& group : groups)
+    surfaces.insert(group.entities.begin(), group.entities.end());
+  MathMesh mesh = collect_triangles(name, std::vector<int>(surfaces.begin(), surfaces.end()));
+  if (mesh.triangles.empty())
+    throw InputError(name + ": the Physical Surfaces have no triangles or quadrangles; mesh "
+                            "the geometry in 2D (gmsh -2) before saving the .msh");
+  if (static_cast<double>(mesh.n_triangles()) > max_triangles) {
+    double area = 0.0;
+    for (const auto& t : mesh.triangles) {
+      area += std::abs(signed_area(std::array<Point2, 3>{
+          mesh.nodes[static_cast<std::size_t>(t[0])], mesh.nodes[static_cast<std::size_t>(t[1])],
+          mesh.nodes[static_cast<std::size_t>(t[2])]}));
     }
-    return mesh;
+    throw_too_many_triangles(name, size, mesh.n_triangles(), area, max_triangles, "");
   }
+  return mesh;
+}
 
-  const PhysicalMesh physical = read_open_model(name, options);
+MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
+                             const PhysicalMesh& physical,
+                             double size,
+                             double max_triangles) {
+  const std::string name = file.string();
+  check_math_mesh_size(name, size, max_triangles);
+  if (check_geometry_file(file) == GmshFileKind::msh)
+    return make_gmsh_math_mesh(file, size, max_triangles);
   const double area = material_area(physical);
   // Triangles of edge `size` have area sqrt(3)/4 size^2; gmsh's are a little smaller, so this
   // underestimates and refuses only meshes that would clearly be too large.
   const double estimate = area / (std::sqrt(3.0) / 4.0 * size * size);
   if (estimate > max_triangles)
     throw_too_many_triangles(name, size, std::round(estimate), area, max_triangles, "about ");
+  std::optional<GmshSession> own_session;
+  if (!GmshSession::is_alive())
+    own_session.emplace();
   MathMesh mesh = triangulate_physical_mesh(name, physical, size);
   if (static_cast<double>(mesh.n_triangles()) > max_triangles)
     throw_too_many_triangles(name, size, mesh.n_triangles(), area, max_triangles, "");

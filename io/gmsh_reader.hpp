@@ -110,4 +110,12 @@ struct GeometryReadOptions {
                                            double max_triangles = default_max_math_triangles,
                                            const GeometryReadOptions& options = {});
 
+/// As above, for a geometry whose physical mesh @p physical was read already
+/// (read_physical_mesh() of the same file): a `.geo` is not read again, its material is
+/// triangulated from @p physical; a `.msh` is read for its own elements.
+[[nodiscard]] MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
+                                           const PhysicalMesh& physical,
+                                           double size,
+                                           double max_triangles = default_max_math_triangles);
+
 } // namespace nmm
