@@ -93,7 +93,10 @@ TEST(Kirsch, PeakHoopStressConvergesToThreeTimesTheTension) {
                 ratio, 100.0 * errors.back());
   }
   EXPECT_LT(errors.back(), 5e-3);
-  EXPECT_LT(errors[2], errors[0]);
+  // Converging at second order (measured rates 1.9 and 2.3 for the two halvings); a rate
+  // below 1.5 means an order of the linear covers was lost.
+  EXPECT_GT(std::log2(errors[0] / errors[1]), 1.5);
+  EXPECT_GT(std::log2(errors[1] / errors[2]), 1.5);
 }
 
 /// Westergaard's solution of Griffith's crack of half-length a under equal tension s at

@@ -191,6 +191,28 @@ TEST(NmmElementIntegrals, StiffnessIsSymmetricWithExactlyTheRigidNullSpace) {
   }
 }
 
+TEST(ElasticityMatrix, MatchesTheClosedFormsOfPlaneStrainAndPlaneStress) {
+  // The D of every element test and of the FEM-equivalence reference comes from
+  // elasticity_matrix(): checked here against the textbook forms, written out (1e-15
+  // relative: a few roundings of O(1) factors).
+  const double e = 3.0e10;
+  const double nu = 0.3;
+  ElasticMaterial m;
+  m.young = e;
+  m.poisson = nu;
+  m.plane = PlaneCondition::strain;
+  const double f = e / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  Eigen::Matrix3d strain;
+  strain << f * (1.0 - nu), f * nu, 0.0, f * nu, f * (1.0 - nu), 0.0, 0.0, 0.0,
+      f * (1.0 - 2.0 * nu) / 2.0;
+  EXPECT_LT((elasticity_matrix(m) - strain).norm(), 1e-15 * strain.norm());
+  m.plane = PlaneCondition::stress;
+  const double g = e / (1.0 - nu * nu);
+  Eigen::Matrix3d stress;
+  stress << g, g * nu, 0.0, g * nu, g, 0.0, 0.0, 0.0, g * (1.0 - nu) / 2.0;
+  EXPECT_LT((elasticity_matrix(m) - stress).norm(), 1e-15 * stress.norm());
+}
+
 /// Independent quadrature: the (star-shaped from its last vertex) polygon as a fan of
 /// triangles, each by the 7-point degree-5 Gauss rule.
 double quadrature(const Polygon& polygon, const std::function<double(const Point2&)>& f) {

@@ -380,7 +380,7 @@ TEST(CoverMesher, JointsEndingExactlyOnNodeOnEdgeAndOnBoundary) {
   EXPECT_TRUE(cs.blocks[0].has_crack_tip);
 }
 
-TEST(CoverMesher, CrossingJointsAndTJunctionsMakeFourBlocks) {
+TEST(CoverMesher, CrossingJointsAndTJunctionsMakeFiveBlocks) {
   const PhysicalMesh physical =
       physical_of({rectangle("rock", 0.0, 0.0, 2.0, 2.0)},
                   {curve("set_a", {{0.0, 0.75}, {2.0, 1.25}}),    // crosses completely
