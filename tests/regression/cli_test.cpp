@@ -6,6 +6,7 @@
 #include "../support/case_fixtures.hpp"
 #include "../support/json_reader.hpp"
 #include "../support/process.hpp"
+#include "../support/vtk_readers.hpp"
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <vtkCellData.h>
@@ -16,10 +17,6 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
-#include <vtkXMLDataElement.h>
-#include <vtkXMLPolyDataReader.h>
-#include <vtkXMLUnstructuredGridReader.h>
-#include <vtkXMLUtilities.h>
 
 #include <chrono>
 #include <cmath>
@@ -35,7 +32,11 @@ namespace {
 namespace fs = std::filesystem;
 using testing::parse_json;
 using testing::ProcessResult;
+using testing::PvdEntry;
+using testing::read_pvd;
 using testing::read_text;
+using testing::read_vtp;
+using testing::read_vtu;
 using testing::replaced;
 using testing::TempDir;
 
@@ -72,41 +73,6 @@ std::vector<std::string> split(const std::string& text, char separator) {
 
 // ---------------------------------------------------------------------------------------
 // Reading the outputs back
-
-struct PvdEntry {
-  double time = 0.0;
-  std::string file;
-};
-
-/// The DataSet entries of a .pvd, parsed by VTK's XML parser.
-std::vector<PvdEntry> read_pvd(const fs::path& pvd) {
-  std::vector<PvdEntry> entries;
-  vtkSmartPointer<vtkXMLDataElement> root;
-  root.TakeReference(vtkXMLUtilities::ReadElementFromFile(pvd.c_str()));
-  EXPECT_NE(root, nullptr) << pvd << " does not parse";
-  if (root == nullptr)
-    return entries;
-  EXPECT_STREQ(root->GetName(), "VTKFile");
-  EXPECT_STREQ(root->GetAttribute("type"), "Collection");
-  vtkXMLDataElement* collection = root->FindNestedElementWithName("Collection");
-  EXPECT_NE(collection, nullptr);
-  if (collection == nullptr)
-    return entries;
-  for (int k = 0; k < collection->GetNumberOfNestedElements(); ++k) {
-    vtkXMLDataElement* dataset = collection->GetNestedElement(k);
-    entries.push_back(
-        {std::stod(dataset->GetAttribute("timestep")), dataset->GetAttribute("file")});
-  }
-  return entries;
-}
-
-vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& file) {
-  vtkNew<vtkXMLUnstructuredGridReader> reader;
-  EXPECT_TRUE(reader->CanReadFile(file.c_str())) << file;
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  return reader->GetOutput();
-}
 
 /// Checks that the array exists with @p components components and holds no NaN or infinity.
 void expect_finite_array(vtkFieldData* data, const char* name, int components, vtkIdType tuples) {
@@ -259,10 +225,7 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
     if (entry.file.rfind("contacts_", 0) != 0)
       continue;
     ++contact_files;
-    vtkNew<vtkXMLPolyDataReader> reader;
-    reader->SetFileName((out / entry.file).c_str());
-    reader->Update();
-    vtkPolyData* points = reader->GetOutput();
+    const vtkSmartPointer<vtkPolyData> points = read_vtp(out / entry.file);
     const vtkIdType n = points->GetNumberOfPoints();
     ASSERT_GT(n, 0) << entry.file;
     expect_finite_array(points->GetPointData(), "normal_force", 1, n);
@@ -308,10 +271,7 @@ TEST_F(Cli, MeshWritesTheElementsTheMathMeshAndTheBoundary) {
   EXPECT_GT(elements->GetNumberOfCells(), 0);
   EXPECT_NE(elements->GetCellData()->GetArray("covers"), nullptr);
   EXPECT_GT(read_vtu(out / "math_mesh.vtu")->GetNumberOfCells(), 0);
-  vtkNew<vtkXMLPolyDataReader> boundary;
-  boundary->SetFileName((out / "boundary.vtp").c_str());
-  boundary->Update();
-  EXPECT_GT(boundary->GetOutput()->GetNumberOfCells(), 0);
+  EXPECT_GT(read_vtp(out / "boundary.vtp")->GetNumberOfCells(), 0);
   expect_all(mesh.out, {"mesh.vtu", "math_mesh.vtu", "boundary.vtp"});
 }
 

@@ -4,7 +4,9 @@
 #include "io/vtk_writer.hpp"
 #include "mesh/error.hpp"
 
+#include "../../support/process.hpp"
 #include "../../support/temp_dir.hpp"
+#include "../../support/vtk_readers.hpp"
 #include <gtest/gtest.h>
 #include <unistd.h>
 #include <vtkCell.h>
@@ -20,10 +22,6 @@
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
-#include <vtkXMLDataElement.h>
-#include <vtkXMLPolyDataReader.h>
-#include <vtkXMLUnstructuredGridReader.h>
-#include <vtkXMLUtilities.h>
 
 #include <cmath>
 #include <cstdint>
@@ -39,6 +37,11 @@ namespace nmm {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::PvdEntry;
+using testing::read_pvd;
+using testing::read_text;
+using testing::read_vtp;
+using testing::read_vtu;
 
 // ---------------------------------------------------------------------------------------
 // Helpers
@@ -57,31 +60,6 @@ protected:
   testing::TempDir temp_{"nmm_vtk_writer"};
   fs::path dir_ = temp_.path();
 };
-
-vtkSmartPointer<vtkUnstructuredGrid> read_vtu(const fs::path& file) {
-  vtkNew<vtkXMLUnstructuredGridReader> reader;
-  EXPECT_TRUE(reader->CanReadFile(file.c_str())) << file;
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  vtkSmartPointer<vtkUnstructuredGrid> grid = reader->GetOutput();
-  return grid;
-}
-
-vtkSmartPointer<vtkPolyData> read_vtp(const fs::path& file) {
-  vtkNew<vtkXMLPolyDataReader> reader;
-  EXPECT_TRUE(reader->CanReadFile(file.c_str())) << file;
-  reader->SetFileName(file.c_str());
-  reader->Update();
-  vtkSmartPointer<vtkPolyData> poly = reader->GetOutput();
-  return poly;
-}
-
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 /// Checks a read-back array's name, type (Float64 or Int32), shape and values.
 void expect_array(vtkFieldData* data,
@@ -506,38 +484,6 @@ TEST_F(VtkWriterTest, UnwritableDirectoryIsAnInputErrorNamingIt) {
 // ---------------------------------------------------------------------------------------
 // PvdSeries
 
-struct PvdLine {
-  std::string timestep;
-  std::string part;
-  std::string file;
-};
-
-/// Parses @p pvd with VTK's XML parser; fails the test when it is not a valid Collection.
-std::vector<PvdLine> read_pvd(const fs::path& pvd) {
-  std::vector<PvdLine> result;
-  vtkSmartPointer<vtkXMLDataElement> root =
-      vtkSmartPointer<vtkXMLDataElement>::Take(vtkXMLUtilities::ReadElementFromFile(pvd.c_str()));
-  EXPECT_NE(root, nullptr) << "not well-formed XML: " << pvd;
-  if (root == nullptr)
-    return result;
-  EXPECT_STREQ(root->GetName(), "VTKFile");
-  EXPECT_STREQ(root->GetAttribute("type"), "Collection");
-  vtkXMLDataElement* collection = root->FindNestedElementWithName("Collection");
-  EXPECT_NE(collection, nullptr);
-  if (collection == nullptr)
-    return result;
-  for (int k = 0; k < collection->GetNumberOfNestedElements(); ++k) {
-    vtkXMLDataElement* dataset = collection->GetNestedElement(k);
-    EXPECT_STREQ(dataset->GetName(), "DataSet");
-    const auto attribute = [&](const char* name) {
-      const char* value = dataset->GetAttribute(name);
-      return std::string(value == nullptr ? "" : value);
-    };
-    result.push_back({attribute("timestep"), attribute("part"), attribute("file")});
-  }
-  return result;
-}
-
 TEST_F(VtkWriterTest, PvdIsValidAfterEveryAddAndListsEntriesInOrder) {
   fs::create_directory(dir_ / "steps");
   PolygonMeshData mesh;
@@ -575,11 +521,11 @@ TEST_F(VtkWriterTest, PvdIsValidAfterEveryAddAndListsEntriesInOrder) {
     }
     series.add(step.front().time, files);
 
-    const std::vector<PvdLine> lines = read_pvd(pvd);
+    const std::vector<PvdEntry> lines = read_pvd(pvd);
     ASSERT_EQ(lines.size(), listed.size());
     for (std::size_t k = 0; k < listed.size(); ++k) {
-      EXPECT_EQ(std::stod(lines[k].timestep), listed[k].time) << "exact round trip";
-      EXPECT_EQ(lines[k].part, std::to_string(listed[k].part));
+      EXPECT_EQ(lines[k].time, listed[k].time) << "exact round trip";
+      EXPECT_EQ(lines[k].part, listed[k].part);
       EXPECT_EQ(lines[k].file, listed[k].listed);
       EXPECT_TRUE(fs::exists(dir_ / lines[k].file)) << "relative to the .pvd";
     }
