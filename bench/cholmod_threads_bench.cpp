@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // CHOLMOD supernodal factor + solve of a 2D elasticity-like matrix (9-point stencil, 2 dofs
 // per node) with the threads of OpenMP and OpenBLAS capped to the usable cores (what `nmm`
-// does) against 1 thread and against an oversubscribed setting, in the same process.
+// does) against 1 thread, against an oversubscribed setting and against the solver's own
+// choice (one thread for small factorizations), in the same process.
 // Usage: bench_cholmod_threads [grid_n]   (dofs = 2 n^2; default n = 300 -> 1.8e5 dofs)
 #include "solver/cholmod_solver.hpp"
 #include "solver/threads.hpp"
@@ -53,10 +54,14 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Best of three factor+solve times with the given thread cap (analysis excluded).
-double factor_solve_seconds(const nmm::SparseMatrix& a, int threads) {
+// Best of three factor+solve times with the given thread cap (analysis excluded). With
+// @p automatic, the solver's own choice of one thread for small factorizations; otherwise
+// every thread of the cap.
+double factor_solve_seconds(const nmm::SparseMatrix& a, int threads, bool automatic = false) {
   nmm::limit_threads(threads);
   nmm::CholmodSolver solver;
+  if (!automatic)
+    solver.set_single_thread_flops(0.0);
   if (solver.analyze(a) != nmm::SolveStatus::ok)
     std::abort();
   const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(a.rows());
@@ -82,13 +87,22 @@ int main(int argc, char** argv) {
   std::printf("matrix: %ld dofs, %ld stored nonzeros; usable cores %d; %s\n",
               static_cast<long>(a.rows()), static_cast<long>(a.nonZeros()), cores,
               nmm::blas_description().c_str());
+  {
+    nmm::CholmodSolver probe;
+    if (probe.analyze(a) != nmm::SolveStatus::ok)
+      std::abort();
+    std::printf("factorisation: %.3g flops\n", probe.factor_flops());
+  }
   const double capped = factor_solve_seconds(a, cores);
   const double single = factor_solve_seconds(a, 1);
   const double oversubscribed = factor_solve_seconds(a, 4 * cores);
+  const double automatic = factor_solve_seconds(a, cores, true);
   std::printf("factor+solve, threads capped to %d (baseline): %.3f s\n", cores, capped);
   std::printf("factor+solve, 1 thread:                      %.3f s  (%.2fx baseline)\n", single,
               single / capped);
   std::printf("factor+solve, %d threads (oversubscribed):    %.3f s  (%.2fx baseline)\n", 4 * cores,
               oversubscribed, oversubscribed / capped);
+  std::printf("factor+solve, nmm's choice (1 thread below %.3g flops): %.3f s  (%.2fx baseline)\n",
+              nmm::default_single_thread_flops, automatic, automatic / capped);
   return 0;
 }

@@ -2,10 +2,12 @@
 #include "solver/cholmod_solver.hpp"
 
 #include "mesh/error.hpp"
+#include "solver/threads.hpp"
 
 #include <cholmod.h>
 
 #include <cstring>
+#include <optional>
 #include <string>
 
 namespace nmm {
@@ -30,6 +32,8 @@ struct CholmodSolver::Impl {
   cholmod_dense* work_e = nullptr;
   long n = -1;
   long failed_column = -1;
+  double flops = 0.0;
+  double single_thread_flops = default_single_thread_flops;
   SolverCounters counters;
 
   Impl() {
@@ -82,6 +86,7 @@ SolveStatus CholmodSolver::analyze(const SparseMatrix& matrix) {
   if (impl_->factor == nullptr || impl_->common.status < CHOLMOD_OK)
     return SolveStatus::failed;
   impl_->n = matrix.rows();
+  impl_->flops = impl_->common.fl;
   ++impl_->counters.symbolic_analyses;
   return SolveStatus::ok;
 }
@@ -90,6 +95,9 @@ SolveStatus CholmodSolver::factorize(const SparseMatrix& matrix) {
   if (impl_->factor == nullptr || matrix.rows() != impl_->n)
     return SolveStatus::failed;
   cholmod_sparse a = Impl::view(matrix);
+  std::optional<SingleBlasThread> single;
+  if (impl_->flops < impl_->single_thread_flops)
+    single.emplace();
   const int ok = cholmod_factorize(&a, impl_->factor, &impl_->common);
   impl_->failed_column = -1;
   if (impl_->common.status == CHOLMOD_NOT_POSDEF ||
@@ -134,6 +142,10 @@ SolveStatus CholmodSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& so
 const SolverCounters& CholmodSolver::counters() const { return impl_->counters; }
 
 std::string CholmodSolver::name() const { return cholmod_version() + " supernodal"; }
+
+void CholmodSolver::set_single_thread_flops(double flops) { impl_->single_thread_flops = flops; }
+
+double CholmodSolver::factor_flops() const { return impl_->flops; }
 
 long CholmodSolver::failed_column() const { return impl_->failed_column; }
 

@@ -41,9 +41,20 @@ void limit_threads(int n) {
   openblas_set_num_threads(n);
 }
 
+int blas_threads() { return openblas_get_num_threads(); }
+
+SingleBlasThread::SingleBlasThread() : previous_(openblas_get_num_threads()) {
+  if (previous_ > 1)
+    openblas_set_num_threads(1);
+}
+
+SingleBlasThread::~SingleBlasThread() {
+  if (previous_ > 1)
+    openblas_set_num_threads(previous_);
+}
+
 std::string blas_description() {
-  return std::string(openblas_get_config()) + " (" + std::to_string(openblas_get_num_threads()) +
-         " threads)";
+  return std::string(openblas_get_config()) + " (" + std::to_string(blas_threads()) + " threads)";
 }
 
 } // namespace nmm

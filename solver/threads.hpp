@@ -14,6 +14,25 @@ namespace nmm {
 /// slower on this 2-core machine kind (DESIGN.md "Measured facts"). @pre n >= 1.
 void limit_threads(int n);
 
+/// Threads OpenBLAS runs on now.
+[[nodiscard]] int blas_threads();
+
+/// Runs OpenBLAS on one thread while it lives (then restores the previous count): for
+/// small factorizations, whose supernodes are too small for a second thread to pay for
+/// waking it (docs/benchmarks.md "CHOLMOD threads").
+class SingleBlasThread {
+public:
+  SingleBlasThread();
+  ~SingleBlasThread();
+  SingleBlasThread(const SingleBlasThread&) = delete;
+  SingleBlasThread& operator=(const SingleBlasThread&) = delete;
+  SingleBlasThread(SingleBlasThread&&) = delete;
+  SingleBlasThread& operator=(SingleBlasThread&&) = delete;
+
+private:
+  int previous_;
+};
+
 /// The BLAS actually linked, e.g. "OpenBLAS 0.3.21 ... (2 threads)".
 [[nodiscard]] std::string blas_description();
 

@@ -110,6 +110,52 @@ TEST(CholmodSolver, FactorizeBeforeAnalyzeFails) {
   EXPECT_EQ(solver.factorize(laplacian(3, 0.0)), SolveStatus::failed);
 }
 
+TEST(CholmodSolver, FactorFlopsAreCholmodsCountOfTheAnalysedFactor) {
+  CholmodSolver solver;
+  EXPECT_EQ(solver.factor_flops(), 0.0);
+  // A diagonal matrix: one entry per column of L, CHOLMOD counts sum_j Lnz(j)^2 = n.
+  SparseMatrix diagonal(50, 50);
+  diagonal.setIdentity();
+  diagonal.makeCompressed();
+  ASSERT_EQ(solver.analyze(diagonal), SolveStatus::ok);
+  EXPECT_EQ(solver.factor_flops(), 50.0);
+  // A 2D Laplacian fills in: more than its n columns, less than a dense factor's n^3 / 3.
+  const SparseMatrix a = laplacian(20, 0.0);
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  EXPECT_GT(solver.factor_flops(), 400.0 * 10);
+  EXPECT_LT(solver.factor_flops(), 400.0 * 400.0 * 400.0 / 3.0);
+}
+
+TEST(CholmodSolver, SmallFactorizationsGiveTheSameAnswerOnOneThread) {
+  limit_threads(available_cores());
+  const SparseMatrix a = laplacian(30, 0.0);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
+  Eigen::VectorXd every_thread;
+  Eigen::VectorXd one_thread;
+  for (const double single_thread_flops : {0.0, 1e300}) {
+    CholmodSolver solver;
+    solver.set_single_thread_flops(single_thread_flops);
+    ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+    ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+    ASSERT_EQ(solver.solve(rhs, single_thread_flops == 0.0 ? every_thread : one_thread),
+              SolveStatus::ok);
+    // The thread count is back where limit_threads() put it after the factorization.
+    EXPECT_EQ(blas_threads(), available_cores());
+  }
+  // Same algorithm, possibly another summation order in BLAS: rounding only (condition ~400).
+  EXPECT_LT((every_thread - one_thread).norm(), 1e-13 * every_thread.norm());
+}
+
+TEST(Threads, SingleBlasThreadRunsOneThreadAndRestoresTheCount) {
+  limit_threads(2);
+  {
+    const SingleBlasThread single;
+    EXPECT_EQ(blas_threads(), 1);
+  }
+  EXPECT_EQ(blas_threads(), 2);
+  limit_threads(available_cores());
+}
+
 TEST(Threads, CapsAtUsableCoresAndLinksOpenBlas) {
   const int cores = available_cores();
   EXPECT_GE(cores, 1);
