@@ -94,7 +94,7 @@ struct PolylineData {
   DataArrays field_data;
 };
 
-/// Writes @p data as a VTK XML unstructured grid (.vtu): binary, ZLib-compressed, appended.
+/// Writes @p data as a VTK XML unstructured grid (.vtu): binary, LZ4-compressed, appended.
 /// A cell of 3 points without holes becomes a VTK_TRIANGLE, every other cell one VTK_POLYGON.
 /// VTK polygons cannot have holes, so a cell with holes is written as one keyhole loop (see
 /// keyhole_loop()). The start vertex of a hole-free polygon is rotated, where possible, to a

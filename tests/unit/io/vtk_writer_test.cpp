@@ -222,7 +222,7 @@ TEST_F(VtkWriterTest, VtuRoundTripsPointsCellsAndEveryKindOfArray) {
 
   // Binary, compressed, appended raw data, as promised.
   const std::string text = read_text(file);
-  EXPECT_NE(text.find("compressor=\"vtkZLibDataCompressor\""), std::string::npos);
+  EXPECT_NE(text.find("compressor=\"vtkLZ4DataCompressor\""), std::string::npos);
   EXPECT_NE(text.find("format=\"appended\""), std::string::npos);
   EXPECT_NE(text.find("encoding=\"raw\""), std::string::npos);
   EXPECT_EQ(text.find("format=\"ascii\""), std::string::npos);
