@@ -295,15 +295,20 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     p.slave_edge = c.slave;
     p.master = c.master;
     if (!g.edge && c.alternative_master >= 0) {
-      // Two convex angles (Shi 3.2 [1]): the contact is the angle-to-edge pair whose entrance
-      // line is passed first (the smaller distance at the start of the step). Chosen once
-      // here, so that the springs, the anchor and its transfer all refer to one edge.
+      // Two convex angles (Shi 3.2 [1]): they penetrate only when both entrance lines are
+      // passed, so the spring goes on the line with the smaller passing distance: the larger
+      // signed distance at the start of the step (outside positive). That is the line still
+      // to be passed, or, when both are, the shortest way out. The other line can have been
+      // passed long ago: a block tip that slid past a corner leaves the corner far behind
+      // the tip's other face, and a spring there pushed the corner out through the whole
+      // block (1e3 m/s in one step; test Incline.SharpTipSlidesPastTheCorner...). Chosen
+      // once here, so that the springs, the anchor and its transfer all refer to one edge.
       const auto distance = [&](int vertex, int edge) {
         const Point2& a = boundary_.position[at(edge)];
         const Point2& b = boundary_.position[at(boundary_.next[at(edge)])];
         return (boundary_.position[at(vertex)] - a).dot(perp(b - a)) / (b - a).norm();
       };
-      if (distance(c.alternative_slave, c.alternative_master) < distance(c.slave, c.master)) {
+      if (distance(c.alternative_slave, c.alternative_master) > distance(c.slave, c.master)) {
         p.slave_edge = c.alternative_slave;
         p.master = c.alternative_master;
       }
