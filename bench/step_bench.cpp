@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: MIT
 // bench/step_bench.cpp — per-step wall time of the time stepper split into its parts, next
 // to the bare CHOLMOD factorisation + solve of the same matrix measured in the same run
-// (issue 4: a whole step within 1.5x of factor + solve).
+// (issue 4: a whole step within 1.5x of factor + solve), and the time to write one output
+// step's .vtu.
 //
 //   bench_step [ORDER=0] [DOFS...]     default DOFS: 1e4 1e5 1e6
+#include "io/step_output.hpp"
+#include "io/vtk_writer.hpp"
 #include "manifold/boundary_conditions.hpp"
 #include "manifold/model.hpp"
 #include "mesh/cover_mesher.hpp"
@@ -18,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <vector>
 
 namespace {
@@ -53,6 +57,7 @@ void run(int order, double target_dofs) {
   scene.body_loads.push_back({{0.0, -9.81}, {}});
   nmm::StepperOptions stepper_options;
   stepper_options.time_step = 1e-3;
+  const std::vector<nmm::Point2> initial_points = nmm::step_points(model);
   nmm::TimeStepper stepper(model, scene, stepper_options);
   (void)stepper.step(1.0); // first step: pattern and symbolic analysis
   const nmm::StepperCounters first = stepper.counters();
@@ -61,6 +66,17 @@ void run(int order, double target_dofs) {
   for (int i = 0; i < steps; ++i)
     (void)stepper.step(1.0);
   const double per_step = since(t) / steps;
+  // Output as `nmm run` writes it at an output step: the step's .vtu (the .pvd rewrite is
+  // a few lines and left out).
+  const std::filesystem::path vtu =
+      std::filesystem::temp_directory_path() / "nmm_bench_step_output.vtu";
+  t = Clock::now();
+  for (int i = 0; i < steps; ++i)
+    nmm::write_vtu(vtu,
+                   nmm::make_step_data(model, initial_points, stepper.velocity(), stepper.time()));
+  const double output = since(t) / steps;
+  const auto output_bytes = static_cast<double>(std::filesystem::file_size(vtu));
+  std::filesystem::remove(vtu);
   const nmm::StepperCounters& c = stepper.counters();
   auto part = [&](double nmm::StepperCounters::*field) {
     return (c.*field - first.*field) / steps;
@@ -80,15 +96,16 @@ void run(int order, double target_dofs) {
               stepper.n_unknowns(), model.n_elements(), mesh_seconds,
               first.seconds_analysis + first.seconds_pattern);
   std::printf("  step %.4f s = constraints %.4f + assembly %.4f + factorisation %.4f + solve %.4f "
-              "+ update %.4f (+ pattern %.4f)\n",
+              "+ update %.4f (+ pattern %.4f); output %.4f s (%.1f MB) per output step\n",
               per_step, part(&nmm::StepperCounters::seconds_constraints),
               part(&nmm::StepperCounters::seconds_assembly),
               part(&nmm::StepperCounters::seconds_factorization),
               part(&nmm::StepperCounters::seconds_solve),
               part(&nmm::StepperCounters::seconds_update),
-              part(&nmm::StepperCounters::seconds_pattern));
-  std::printf("  bare CHOLMOD factor + solve %.4f s; step / bare = %.2f\n", floor,
-              per_step / floor);
+              part(&nmm::StepperCounters::seconds_pattern), output, output_bytes / 1e6);
+  std::printf("  bare CHOLMOD factor + solve %.4f s (%.3g flops); step / bare = %.2f, "
+              "(step + output) / bare = %.2f\n",
+              floor, bare.factor_flops(), per_step / floor, (per_step + output) / floor);
 }
 
 } // namespace
