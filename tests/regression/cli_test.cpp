@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -409,6 +410,26 @@ TEST_F(Cli, NumericalFailureLeavesTheStartAndTheReasonAndExitsWith3) {
   const std::vector<PvdEntry> series = read_pvd(out / "case.pvd");
   ASSERT_EQ(series.size(), 1u);
   static_cast<void>(read_step(out / series[0].file, 0.0));
+}
+
+TEST_F(Cli, SingularOrderOneModelWithASliverPointsToTheTinyCover) {
+  // examples/05_plate_with_hole made 10 hole diameters wide: one math node keeps a sliver of
+  // 2e-8 of its star, a tiny cover that leaves near-null modes with order-1 covers (a known
+  // limitation, docs/formulation.md). The message must name the way out, and the way out
+  // must work.
+  const fs::path plate = fs::path(NMM_EXAMPLES_DIR) / "05_plate_with_hole";
+  const std::string geometry =
+      replaced(read_text(plate / "plate_with_hole.geo"), "b = 2.0;", "b = 1.0;");
+  { std::ofstream(dir() / "plate_with_hole.geo") << geometry; }
+  const std::string text = read_text(plate / "case.toml");
+  const fs::path file = dir() / "case.toml";
+  { std::ofstream(file) << text; }
+  const ProcessResult run = nmm({"run", file.string(), "--quiet"});
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  expect_all(run.err, {"singular", "tiny cover", "min_cover_area_ratio = 1e-9"});
+  { std::ofstream(file) << replaced(text, "order = 1", "order = 1\nmin_cover_area_ratio = 1e-9"); }
+  const ProcessResult fixed = nmm({"run", file.string(), "--quiet"});
+  EXPECT_EQ(fixed.exit_code, 0) << fixed.err;
 }
 
 // ---------------------------------------------------------------------------------------
