@@ -103,6 +103,9 @@ void run(int order, double target_dofs) {
               part(&nmm::StepperCounters::seconds_solve),
               part(&nmm::StepperCounters::seconds_update),
               part(&nmm::StepperCounters::seconds_pattern), output, output_bytes / 1e6);
+  std::printf("  in the measured steps: %ld pattern builds (each with a symbolic analysis), %ld "
+              "plan rebuilds\n",
+              c.pattern_builds - first.pattern_builds, c.plan_rebuilds - first.plan_rebuilds);
   std::printf("  bare CHOLMOD factor + solve %.4f s (%.3g flops); step / bare = %.2f, "
               "(step + output) / bare = %.2f\n",
               floor, bare.factor_flops(), per_step / floor, (per_step + output) / floor);

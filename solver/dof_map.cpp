@@ -24,7 +24,8 @@ struct Expression {
 DofMap::DofMap(int n_raw,
                std::span<const LinearConstraint> constraints,
                double tolerance,
-               double length)
+               double length,
+               const DofMap* previous)
     : reduced_of_(static_cast<std::size_t>(n_raw), 0), slaves_(static_cast<std::size_t>(n_raw)) {
   std::vector<int> slave_of(static_cast<std::size_t>(n_raw), -1);
   std::vector<Expression> expressions;
@@ -85,7 +86,17 @@ DofMap::DofMap(int n_raw,
     const auto preferred = reduced.find(row.preferred_slave);
     if (preferred != reduced.end() && std::abs(preferred->second) >= 0.1 * largest) {
       pivot = preferred->first;
-    } else {
+    } else if (previous != nullptr && previous->n_raw() == n_raw) {
+      // The largest of the last step's slaves that is big enough, if any.
+      double best = 0.1 * largest;
+      for (const auto& [raw, c] : reduced) {
+        if (previous->is_slave(raw) && std::abs(c) >= best) {
+          best = std::abs(c);
+          pivot = raw;
+        }
+      }
+    }
+    if (pivot < 0) {
       for (const auto& [raw, c] : reduced) {
         if (std::abs(c) == largest) {
           pivot = raw;

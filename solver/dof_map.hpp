@@ -45,11 +45,18 @@ public:
   /// @param length       the model's size (m): redundant rows that disagree by less than
   ///                     1e-9 of it agree (support points carry the rounding of their moves,
   ///                     and each row corrects its own point's drift).
+  /// @param previous     the map of the last step, or null: where a row may pivot on an
+  ///                     unknown that was a slave there (with at least a tenth of the row's
+  ///                     largest coefficient), it does. Coefficients of supports on a moving
+  ///                     geometry change a little from step to step; without this, near ties
+  ///                     swap slaves, and every step gets a new sparsity pattern and symbolic
+  ///                     analysis (bench/step_bench.cpp, order 1).
   /// @throws InputError when constraints contradict each other (naming both origins).
   DofMap(int n_raw,
          std::span<const LinearConstraint> constraints,
          double tolerance = 1e-12,
-         double length = 1.0);
+         double length = 1.0,
+         const DofMap* previous = nullptr);
 
   [[nodiscard]] int n_raw() const noexcept { return static_cast<int>(reduced_of_.size()); }
   [[nodiscard]] int n_reduced() const noexcept { return n_reduced_; }

@@ -155,6 +155,7 @@ struct TimeStepper::Impl {
   bool energy_started = false;
   /// Reduced unknowns of every coupling (elements, then penalty springs), flat, with their
   /// starts: the pattern of the last build, compared to the next step's.
+  std::shared_ptr<const DofMap> map; // of the last step (or try)
   std::vector<int> coupling_start;
   std::vector<int> coupling_dofs;
   bool analysed = false;
@@ -349,7 +350,11 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     constraints.insert(constraints.end(), impl_->dependencies.begin(), impl_->dependencies.end());
     const std::vector<LinearConstraint> supports = support_constraints(model_, scene_.supports, t1);
     constraints.insert(constraints.end(), supports.begin(), supports.end());
-    const DofMap map(model_.n_dofs(), constraints, 1e-12, model_size_);
+    // The last step's slaves are kept where they still may be: the same pattern, no new
+    // symbolic analysis.
+    impl_->map = std::make_shared<const DofMap>(model_.n_dofs(), constraints, 1e-12, model_size_,
+                                                impl_->map.get());
+    const DofMap& map = *impl_->map;
 
     // Reduced unknowns of every coupling: elements, then penalty supports (same unknowns as
     // their element). Only couplings with slaves get a transform.
@@ -399,10 +404,34 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       return std::span<const int>(flat.data() + starts[k], at(starts[k + 1] - starts[k]));
     };
     lap(clock, counters_.seconds_constraints);
-    // The sparsity pattern: rebuilt only when the couplings changed.
+    // The sparsity pattern: rebuilt only when a coupling needs an entry it does not have.
+    // Couplings that changed within it (the expansion of a slave gaining or losing a term
+    // whose coefficient cancels to rounding as supports move) only get new plans: no new
+    // symbolic analysis.
     bool rebuilt = false;
-    if (!impl_->stiffness || impl_->pattern.n_dofs() != map.n_reduced() ||
-        impl_->coupling_start != starts || impl_->coupling_dofs != flat) {
+    const bool same_size = impl_->stiffness && impl_->pattern.n_dofs() == map.n_reduced();
+    const bool same = same_size && impl_->coupling_start == starts && impl_->coupling_dofs == flat;
+    auto fits = [&] {
+      for (std::size_t k = 0; k + 1 < starts.size(); ++k) {
+        const std::span<const int> dofs = coupling(k);
+        for (std::size_t i = 0; i < dofs.size(); ++i) {
+          for (std::size_t j = i; j < dofs.size() && dofs[i] >= 0; ++j) {
+            if (dofs[j] >= 0 &&
+                !impl_->pattern.contains(std::min(dofs[i], dofs[j]), std::max(dofs[i], dofs[j])))
+              return false;
+          }
+        }
+      }
+      return true;
+    };
+    if (!same && same_size && fits()) {
+      impl_->stiffness->clear_plans();
+      for (std::size_t k = 0; k + 1 < starts.size(); ++k)
+        (void)impl_->stiffness->plan(coupling(k));
+      impl_->coupling_start = starts;
+      impl_->coupling_dofs = flat;
+      ++counters_.plan_rebuilds;
+    } else if (!same) {
       SparsityBuilder builder(map.n_reduced());
       builder.reserve(starts.size() - 1, flat.size());
       for (std::size_t k = 0; k + 1 < starts.size(); ++k)

@@ -72,6 +72,7 @@ struct StepperCounters {
   long step_cuts = 0;
   long contact_searches = 0;
   long pattern_builds = 0;
+  long plan_rebuilds = 0; ///< couplings changed within the pattern: new plans, same analysis
   long stress_updates = 0;
   /// Wall time of each part of the steps so far, s (bench/step_bench.cpp reports them).
   double seconds_constraints = 0.0;   ///< DofMap and the reduction of every element

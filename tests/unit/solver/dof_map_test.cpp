@@ -113,5 +113,22 @@ TEST(DofMap, PreferredSlaveIsEliminated) {
   EXPECT_FALSE(map.is_slave(1));
 }
 
+TEST(DofMap, KeepsTheLastStepsSlavesWhereTheCoefficientsNearlyTie) {
+  // A support row whose two coefficients swap order by rounding from one step to the next
+  // (preferred slave -1: none). Alone, each map pivots on the larger one; given the last
+  // step's map, the second keeps its slave, so the sparsity pattern stays the same.
+  const std::vector<LinearConstraint> first{{{{0, 1.0}, {1, 1.0 + 1e-9}}, 0.0, -1, "point"}};
+  const std::vector<LinearConstraint> second{{{{0, 1.0 + 1e-9}, {1, 1.0}}, 0.0, -1, "point"}};
+  const DofMap last(2, first);
+  ASSERT_TRUE(last.is_slave(1));
+  EXPECT_TRUE(DofMap(2, second).is_slave(0));
+  const DofMap next(2, second, 1e-12, 1.0, &last);
+  EXPECT_TRUE(next.is_slave(1));
+  EXPECT_FALSE(next.is_slave(0));
+  // A last-step slave whose coefficient is below a tenth of the largest is not kept.
+  const std::vector<LinearConstraint> third{{{{0, 1.0}, {1, 0.05}}, 0.0, -1, "point"}};
+  EXPECT_TRUE(DofMap(2, third, 1e-12, 1.0, &last).is_slave(0));
+}
+
 } // namespace
 } // namespace nmm
