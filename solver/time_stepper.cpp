@@ -153,9 +153,9 @@ struct TimeStepper::Impl {
   /// kinetic energy the run can have (the energy check), J.
   double energy_budget = 0.0;
   bool energy_started = false;
-  /// Reduced unknowns of every coupling (elements, then penalty springs), flat, with their
-  /// starts: the pattern of the last build, compared to the next step's.
   std::shared_ptr<const DofMap> map; // of the last step (or try)
+  /// Reduced unknowns of every coupling (elements, penalty springs, contacts), flat, with
+  /// their starts: what the current plans were made for, compared to the next step's.
   std::vector<int> coupling_start;
   std::vector<int> coupling_dofs;
   bool analysed = false;
