@@ -104,33 +104,80 @@ public:
   }
 
 private:
-  /// Sort and sweep on x of the edges' boxes grown by the contact distance.
+  /// Pairs of non-adjacent edges whose boxes, grown by the contact distance, overlap: a
+  /// uniform grid of cells about the size of a mean box, each box listed in the cells it
+  /// overlaps, each pair reported only by the cell that holds the lower-left corner of the
+  /// two boxes' overlap (so once). O(n + pairs) whatever the model's shape; a sort and sweep
+  /// along x cost O(n m) with m the edges stacked above each other (docs/benchmarks.md).
   std::vector<std::pair<int, int>> broad_phase() const {
     const int n = b_.n_vertices();
+    if (n == 0)
+      return {};
     std::vector<BoundingBox> boxes(at(n));
+    BoundingBox all;
+    double mean_size = 0.0;
     for (int e = 0; e < n; ++e) {
-      boxes[at(e)].extend(b_.position[at(e)]);
-      boxes[at(e)].extend(b_.position[at(b_.next[at(e)])]);
-      boxes[at(e)].min.array() -= options_.distance;
-      boxes[at(e)].max.array() += options_.distance;
+      BoundingBox& box = boxes[at(e)];
+      box.extend(b_.position[at(e)]);
+      box.extend(b_.position[at(b_.next[at(e)])]);
+      box.min.array() -= options_.distance;
+      box.max.array() += options_.distance;
+      all.extend(box.min);
+      all.extend(box.max);
+      mean_size += std::max(box.size().x(), box.size().y()) / n;
     }
-    std::vector<int> order(at(n));
-    std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(),
-              [&](int a, int c) { return boxes[at(a)].min.x() < boxes[at(c)].min.x(); });
-    std::vector<std::pair<int, int>> pairs;
-    std::vector<int> active;
-    for (const int e : order) {
-      const BoundingBox& box = boxes[at(e)];
-      std::erase_if(active, [&](int a) { return boxes[at(a)].max.x() < box.min.x(); });
-      for (const int a : active) {
-        const BoundingBox& other = boxes[at(a)];
-        if (other.max.y() < box.min.y() || other.min.y() > box.max.y() || b_.adjacent(a, e))
-          continue;
-        pairs.emplace_back(std::min(a, e), std::max(a, e));
+    // Cells of the mean box size, but no more than about 4 per edge (a few huge edges).
+    const Point2 extent = all.size();
+    double cell = std::max(mean_size, 1e-300);
+    const double wanted = (extent.x() / cell + 1.0) * (extent.y() / cell + 1.0);
+    if (wanted > 4.0 * n)
+      cell *= std::sqrt(wanted / (4.0 * n));
+    const int nx = static_cast<int>(extent.x() / cell) + 1;
+    const int ny = static_cast<int>(extent.y() / cell) + 1;
+    auto index = [&](double v, double lo, int count) {
+      return std::clamp(static_cast<int>((v - lo) / cell), 0, count - 1);
+    };
+    auto cells_of = [&](const BoundingBox& box, auto&& visit) {
+      const int x1 = index(box.max.x(), all.min.x(), nx);
+      const int y1 = index(box.max.y(), all.min.y(), ny);
+      for (int y = index(box.min.y(), all.min.y(), ny); y <= y1; ++y) {
+        for (int x = index(box.min.x(), all.min.x(), nx); x <= x1; ++x)
+          visit(static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) +
+                static_cast<std::size_t>(x));
       }
-      active.push_back(e);
+    };
+    // Counting sort of (cell, edge): start[c] .. start[c + 1] are cell c's edges.
+    std::vector<int> start(static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) + 1, 0);
+    for (int e = 0; e < n; ++e)
+      cells_of(boxes[at(e)], [&](std::size_t c) { ++start[c + 1]; });
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<int> members(at(start.back()));
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (int e = 0; e < n; ++e)
+      cells_of(boxes[at(e)], [&](std::size_t c) { members[at(fill[c]++)] = e; });
+    std::vector<std::pair<int, int>> pairs;
+    for (std::size_t c = 0; c + 1 < start.size(); ++c) {
+      for (int i = start[c]; i < start[c + 1]; ++i) {
+        const int e = members[at(i)];
+        const BoundingBox& box = boxes[at(e)];
+        for (int j = i + 1; j < start[c + 1]; ++j) {
+          const int f = members[at(j)];
+          const BoundingBox& other = boxes[at(f)];
+          if (other.max.x() < box.min.x() || other.min.x() > box.max.x() ||
+              other.max.y() < box.min.y() || other.min.y() > box.max.y() || b_.adjacent(e, f))
+            continue;
+          const std::size_t owner =
+              static_cast<std::size_t>(
+                  index(std::max(box.min.y(), other.min.y()), all.min.y(), ny)) *
+                  static_cast<std::size_t>(nx) +
+              static_cast<std::size_t>(
+                  index(std::max(box.min.x(), other.min.x()), all.min.x(), nx));
+          if (owner == c)
+            pairs.emplace_back(std::min(e, f), std::max(e, f));
+        }
+      }
     }
+    std::sort(pairs.begin(), pairs.end()); // one order whatever the grid
     return pairs;
   }
 

@@ -87,7 +87,7 @@ struct DetectionStats {
 /// Finds every contact that can close within the step.
 /// @param keep  keys of contacts closed at the end of the last step: they are kept even if
 ///              their penetration exceeds options.penetration.
-/// Broad phase: sort and sweep of the edges' boxes grown by options.distance, O(n log n + k).
+/// Broad phase: a uniform grid of the edges' boxes grown by options.distance, O(n + pairs).
 [[nodiscard]] std::vector<ContactCandidate> detect_contacts(const ContactBoundary& boundary,
                                                             const DetectionOptions& options,
                                                             const std::vector<std::uint64_t>& keep,

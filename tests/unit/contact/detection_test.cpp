@@ -172,5 +172,28 @@ TEST(ContactDetection, BroadPhaseFindsEveryPairOfAManyBlockRow) {
   EXPECT_LT(stats.edge_pairs, 200 * 8); // neighbours only, not all pairs
 }
 
+TEST(ContactDetection, BroadPhaseFindsEveryPairInAnyShapeAndAcrossLongEdges) {
+  // A tall column of 300 squares (the shape a sweep along x handled worst), and a 10 x 10
+  // grid of squares on a slab 110 m long whose top edge crosses many cells of the grid:
+  // every facing pair is found (299; 2 x 10 x 9 + 10), and only neighbours are paired.
+  std::vector<std::vector<Point2>> column;
+  for (int i = 0; i < 300; ++i)
+    column.push_back(square(0, 1.01 * i, 1));
+  DetectionStats stats;
+  auto contacts = detect_contacts(boundary_of(column), options(0.02), {}, &stats);
+  EXPECT_EQ(count(contacts, ContactKind::edge_edge), 299);
+  EXPECT_LT(stats.edge_pairs, 1200 * 8); // 1200 edges; all pairs would be 7.2e5
+
+  std::vector<std::vector<Point2>> grid{{{-50, -1.01}, {60, -1.01}, {60, -0.01}, {-50, -0.01}}};
+  for (int i = 0; i < 10; ++i) {
+    for (int j = 0; j < 10; ++j)
+      grid.push_back(square(1.01 * i, 1.01 * j, 1));
+  }
+  DetectionStats grid_stats;
+  contacts = detect_contacts(boundary_of(grid), options(0.02), {}, &grid_stats);
+  EXPECT_EQ(count(contacts, ContactKind::edge_edge), 2 * 10 * 9 + 10);
+  EXPECT_LT(grid_stats.edge_pairs, 404 * 8); // 404 edges; all pairs would be 8.2e4
+}
+
 } // namespace
 } // namespace nmm
