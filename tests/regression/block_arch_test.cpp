@@ -4,8 +4,8 @@
 // 1.5 times it (the case as shipped) by the mechanism limit_analysis.py predicts, hinges
 // opening at joints 0 and 11 (intrados), 3 and 8 (extrados), 5 and 6 (intrados).
 #include "../support/case_fixtures.hpp"
-#include "../support/process.hpp"
 #include "../support/vtk_readers.hpp"
+#include "example_run.hpp"
 #include <gtest/gtest.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -19,7 +19,6 @@
 #include <filesystem>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -27,13 +26,12 @@ namespace nmm {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::ProcessResult;
+using testing::ExampleRun;
 using testing::PvdEntry;
 using testing::read_pvd;
 using testing::read_text;
 using testing::read_vtu;
 using testing::replaced;
-using testing::TempDir;
 
 const fs::path example = fs::path(NMM_EXAMPLES_DIR) / "09_block_arch";
 
@@ -44,31 +42,6 @@ constexpr double intrados = 1.8;
 constexpr double extrados = 2.2;
 // limit_analysis.py: the collapse load of the arch, N per metre.
 constexpr double collapse_load = 51463.3;
-
-ProcessResult run_nmm(const fs::path& case_file, const fs::path& out) {
-  return testing::run_process(
-      {NMM_EXECUTABLE, "run", case_file.string(), "-o", out.string(), "--quiet"},
-      out.parent_path() / (out.filename().string() + "_nmm"));
-}
-
-/// history.csv as columns by name.
-std::map<std::string, std::vector<double>> read_columns(const fs::path& file) {
-  std::istringstream in(read_text(file));
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  std::istringstream header(line);
-  for (std::string name; std::getline(header, name, ',');)
-    names.push_back(name);
-  std::map<std::string, std::vector<double>> columns;
-  while (std::getline(in, line)) {
-    std::istringstream row(line);
-    std::size_t k = 0;
-    for (std::string cell; std::getline(row, cell, ',') && k < names.size(); ++k)
-      columns[names[k]].push_back(std::stod(cell));
-  }
-  return columns;
-}
 
 /// The rigid motion of one block fitted to its points: centroid before and after, rotation.
 struct BlockMotion {
@@ -179,7 +152,10 @@ std::string case_text_with(double force, double end_time) {
   return replaced(text, "end_time = 0.18", "end_time = " + std::to_string(end_time));
 }
 
-TEST(BlockArch, StandsUnderSevenTenthsOfItsCollapseLoad) {
+/// Runs examples/09_block_arch as the user does (testing::Example).
+class BlockArch : public testing::Example {};
+
+TEST_F(BlockArch, StandsUnderSevenTenthsOfItsCollapseLoad) {
   // The shipped case with 0.7 P_c instead of 1.5 P_c, run to 0.3 s (the load is full from
   // 0.1 s on). Elastic: the crown of a clamped slender elastic arch moves 0.016 P R^3 / (E I)
   // = 0.08 mm under this load (P = 36 kN/m, R = 2 m, E I = 5.3e7 N m^2: bending and
@@ -187,17 +163,11 @@ TEST(BlockArch, StandsUnderSevenTenthsOfItsCollapseLoad) {
   // soften it. Measured: at most 0.19 mm, and it no longer moves after the ramp
   // (0.2 to 0.3 s: 1e-6 m). Bounds: 0.5 mm (the collapse falls 6.4 mm in 0.18 s) and
   // 2e-5 m of creep over the last 0.1 s (at 0.95 P_c the arch sinks 0.7 mm in it).
-  const TempDir dir("nmm_block_arch");
-  const fs::path case_file = dir.path() / "case.toml";
+  const fs::path case_file = dir() / "case.toml";
   testing::write_text(case_file, case_text_with(0.7 * collapse_load, 0.3));
-  const fs::path out = dir.path() / "out";
-  const ProcessResult run = run_nmm(case_file, out);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.out.find("completed"), std::string::npos) << run.out;
-
-  auto history = read_columns(out / "history.csv");
-  const std::vector<double>& time = history["time"];
-  const std::vector<double>& uy = history["key.uy"];
+  const ExampleRun run = run_case(case_file, "out");
+  const std::vector<double>& time = run.history.at("time");
+  const std::vector<double>& uy = run.history.at("key.uy");
   ASSERT_FALSE(time.empty());
   ASSERT_EQ(uy.size(), time.size());
   EXPECT_NEAR(time.back(), 0.3, 1e-9);
@@ -213,25 +183,19 @@ TEST(BlockArch, StandsUnderSevenTenthsOfItsCollapseLoad) {
   EXPECT_LT(std::abs(uy.back() - at_0_2), 2e-5) << "the arch still moves under a constant load";
 }
 
-TEST(BlockArch, CollapsesUnderOneAndAHalfTimesItByThePredictedHinges) {
+TEST_F(BlockArch, CollapsesUnderOneAndAHalfTimesItByThePredictedHinges) {
   // The case as shipped: 1.5 P_c, ramped in over 0.1 s, 0.18 s. Rigid blocks turning about
   // the predicted hinges would lower the key block by 4.35 mm in that time
   // (limit_analysis.py), plus about 0.4 mm elastic; the model's own collapse load is 0.90 to
   // 0.95 P_c (examples/09_block_arch/README.md), so it falls more.
   // Measured: 6.45 mm, at 0.132 m/s. Bounds: more than 4 mm, faster than 0.08 m/s.
-  const TempDir dir("nmm_block_arch");
-  const fs::path out = dir.path() / "out";
-  const ProcessResult run = run_nmm(example / "case.toml", out);
-  ASSERT_EQ(run.exit_code, 0) << run.err;
-  EXPECT_NE(run.out.find("completed"), std::string::npos) << run.out;
-  EXPECT_NE(run.out.find("warnings: none"), std::string::npos) << run.out;
-
-  auto history = read_columns(out / "history.csv");
-  ASSERT_FALSE(history["time"].empty());
-  EXPECT_NEAR(history["time"].back(), 0.18, 1e-9);
-  EXPECT_LT(history["key.uy"].back(), -4e-3) << "the key block did not fall";
-  EXPECT_LT(history["key.vy"].back(), -0.08) << "the key block is not falling any more";
-  EXPECT_LT(std::abs(history["key.ux"].back()), 1e-4) << "symmetric: the key block drops";
+  const ExampleRun run = this->run("09_block_arch");
+  const fs::path out = dir() / "09_block_arch";
+  EXPECT_NE(run.process.out.find("warnings: none"), std::string::npos) << run.process.out;
+  EXPECT_NEAR(run.last("time"), 0.18, 1e-9);
+  EXPECT_LT(run.last("key.uy"), -4e-3) << "the key block did not fall";
+  EXPECT_LT(run.last("key.vy"), -0.08) << "the key block is not falling any more";
+  EXPECT_LT(std::abs(run.last("key.ux")), 1e-4) << "symmetric: the key block drops";
 
   // The last step file: the six predicted hinges open (measured 5.2, 13.8 and 8.8 mm at the
   // springings, the haunches and the key block), by the same amount on both sides; every

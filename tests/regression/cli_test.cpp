@@ -21,7 +21,6 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -420,14 +419,14 @@ TEST_F(Cli, SingularOrderOneModelWithASliverPointsToTheTinyCover) {
   const fs::path plate = fs::path(NMM_EXAMPLES_DIR) / "05_plate_with_hole";
   const std::string geometry =
       replaced(read_text(plate / "plate_with_hole.geo"), "b = 2.0;", "b = 1.0;");
-  { std::ofstream(dir() / "plate_with_hole.geo") << geometry; }
+  testing::write_text(dir() / "plate_with_hole.geo", geometry);
   const std::string text = read_text(plate / "case.toml");
   const fs::path file = dir() / "case.toml";
-  { std::ofstream(file) << text; }
+  testing::write_text(file, text);
   const ProcessResult run = nmm({"run", file.string(), "--quiet"});
   EXPECT_EQ(run.exit_code, 3) << run.err;
   expect_all(run.err, {"singular", "tiny cover", "min_cover_area_ratio = 1e-9"});
-  { std::ofstream(file) << replaced(text, "order = 1", "order = 1\nmin_cover_area_ratio = 1e-9"); }
+  testing::write_text(file, replaced(text, "order = 1", "order = 1\nmin_cover_area_ratio = 1e-9"));
   const ProcessResult fixed = nmm({"run", file.string(), "--quiet"});
   EXPECT_EQ(fixed.exit_code, 0) << fixed.err;
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // tests/regression/example_run.hpp — runs one bundled example as a user does,
-// `nmm run examples/NAME/case.toml -o DIR --quiet`, and reads back its summary.json and the
-// last row of its history.csv, for the checks of the examples' right answers.
+// `nmm run examples/NAME/case.toml -o DIR --quiet`, and reads back its summary.json and its
+// history.csv, for the checks of the examples' right answers.
 #pragma once
 
 #include "../support/json_reader.hpp"
@@ -17,16 +17,42 @@
 
 namespace nmm::testing {
 
-/// What one run of an example left: the program's output, summary.json, and the last row of
-/// history.csv by column name.
+/// history.csv as columns by name (the header's names; one value per step).
+inline std::map<std::string, std::vector<double>> read_history_columns(const fs::path& file) {
+  std::istringstream in(read_text(file));
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::istringstream header(line);
+  for (std::string name; std::getline(header, name, ',');)
+    names.push_back(name);
+  std::map<std::string, std::vector<double>> columns;
+  for (const std::string& name : names)
+    columns[name];
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    std::size_t k = 0;
+    for (std::string cell; std::getline(row, cell, ',') && k < names.size(); ++k)
+      columns[names[k]].push_back(std::stod(cell));
+  }
+  return columns;
+}
+
+/// What one run of an example left: the program's output, summary.json, and history.csv.
 struct ExampleRun {
   ProcessResult process;
   Json summary;
-  std::map<std::string, double> last_row;
+  std::map<std::string, std::vector<double>> history; ///< by column name
 
   /// The value of monitor @p monitor's key @p key (`uy`, `sxx`, ...) in summary.json.
   [[nodiscard]] double monitor(const std::string& monitor, const std::string& key) const {
     return summary.at("monitors").at(monitor).at(key).number;
+  }
+  /// The last step's value in history.csv's column @p column.
+  [[nodiscard]] double last(const std::string& column) const {
+    const std::vector<double>& values = history.at(column);
+    EXPECT_FALSE(values.empty()) << "no step in history.csv";
+    return values.empty() ? 0.0 : values.back();
   }
 };
 
@@ -37,9 +63,13 @@ protected:
 
   /// Runs examples/@p name/case.toml into a folder of its own; checks that it completed.
   ExampleRun run(const std::string& name) {
+    return run_case(fs::path(NMM_EXAMPLES_DIR) / name / "case.toml", name);
+  }
+
+  /// Runs @p case_file into the folder @p name of the fixture's; checks that it completed.
+  ExampleRun run_case(const fs::path& case_file, const std::string& name) {
     const fs::path out = dir_.path() / name;
     const fs::path program = NMM_EXECUTABLE;
-    const fs::path case_file = fs::path(NMM_EXAMPLES_DIR) / name / "case.toml";
     ExampleRun result;
     result.process = run_process(
         {program.string(), "run", case_file.string(), "-o", out.string(), "--quiet"}, out);
@@ -47,22 +77,11 @@ protected:
     EXPECT_NE(result.process.out.find("completed"), std::string::npos) << result.process.out;
     result.summary = parse_json(read_text(out / "summary.json"));
     EXPECT_EQ(result.summary.at("status").string, "completed");
-    // history.csv: the header, then one row per step; keep the last.
-    std::istringstream history(read_text(out / "history.csv"));
-    std::string header;
-    std::string row;
-    std::getline(history, header);
-    for (std::string line; std::getline(history, line);)
-      row = line;
-    std::istringstream names(header);
-    std::istringstream values(row);
-    std::string name_of_column;
-    std::string value;
-    while (std::getline(names, name_of_column, ',') && std::getline(values, value, ','))
-      result.last_row[name_of_column] = std::stod(value);
-    EXPECT_FALSE(result.last_row.empty()) << "no step in history.csv";
+    result.history = read_history_columns(out / "history.csv");
     return result;
   }
+
+  [[nodiscard]] const fs::path& dir() const { return dir_.path(); }
 
 private:
   TempDir dir_;

@@ -33,7 +33,7 @@ TEST_F(Example, GravityColumnSettlesByTheExactQuadratic) {
   // covers on this mesh (1.3e-5).
   EXPECT_NEAR(example.monitor("top", "uy"), top, 1e-10 * std::abs(top));
   EXPECT_NEAR(example.monitor("middle", "uy"), settlement(5.0), 1e-10 * std::abs(top));
-  EXPECT_EQ(example.last_row.at("top.uy"), example.monitor("top", "uy")); // both %.17g
+  EXPECT_EQ(example.last("top.uy"), example.monitor("top", "uy")); // both %.17g
   for (const char* monitor : {"top", "middle", "bottom"})
     EXPECT_NEAR(example.monitor(monitor, "ux"), 0.0, 1e-10 * std::abs(top)) << monitor;
   // Stresses: the element's linear stress read at the monitor's current position. The stress

@@ -19,7 +19,7 @@ TEST_F(Example, PlateWithCrackOpensNearTheGriffithProfile) {
   const ExampleRun example = run("06_plate_with_crack");
   EXPECT_TRUE(example.summary.at("warnings").items.empty());
   // The crack opens over its whole length: no contact is left closed on its faces.
-  EXPECT_EQ(example.last_row.at("contacts"), 0.0);
+  EXPECT_EQ(example.last("contacts"), 0.0);
   const double a = 0.1;
   const double poisson = 0.25;
   auto griffith = [&](double x) {
@@ -67,11 +67,11 @@ TEST_F(Example, MultiBlockSlopeSlidesAsOneBodyWithTheFrictionOfTheBedding) {
   const ExampleRun example = run("08_multi_block_slope");
   const double pi = 3.14159265358979323846;
   const double a = 9.81 * (std::sin(pi / 6.0) - std::tan(pi / 9.0) * std::cos(pi / 6.0));
-  const double t = example.last_row.at("time");
+  const double t = example.last("time");
   EXPECT_NEAR(t, 1.0, 1e-9);
   const double exact = 0.5 * a * t * t;
   const double energy = 0.5 * 2600.0 * 83.1384 * (a * t) * (a * t);
-  EXPECT_NEAR(example.last_row.at("kinetic_energy"), energy, 0.02 * energy);
+  EXPECT_NEAR(example.last("kinetic_energy"), energy, 0.02 * energy);
   for (const char* block : {"toe_block", "block_2", "block_3", "block_4", "top_block"}) {
     const double slid = example.monitor(block, "ux") * std::cos(pi / 6.0) -
                         example.monitor(block, "uy") * std::sin(pi / 6.0);

@@ -277,12 +277,6 @@ TEST(EnergyCheck, StopsARunWhoseKineticEnergyComesFromNowhere) {
   }
 }
 
-} // namespace
-} // namespace nmm
-
-namespace nmm {
-namespace {
-
 TEST(StaticSteps, AStructureInEquilibriumStaysPutStepAfterStep) {
   // A foundation held at its base and sides with a dam on top (two materials, one body),
   // under its weight: after the first static step it is in equilibrium, and every further
