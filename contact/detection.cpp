@@ -177,7 +177,6 @@ private:
         }
       }
     }
-    std::sort(pairs.begin(), pairs.end()); // one order whatever the grid
     return pairs;
   }
 
