@@ -7,7 +7,8 @@
 #include "solver/cholmod_solver.hpp"
 #include "solver/threads.hpp"
 
-#include <chrono>
+#include "timing.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
@@ -50,10 +51,6 @@ nmm::SparseMatrix stencil_matrix(int n) {
   return a;
 }
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // Best of three factor+solve times with the given thread cap (analysis excluded). With
 // @p automatic, the solver's own choice of one thread for small factorizations; otherwise
 // every thread of the cap.
@@ -66,16 +63,14 @@ double factor_solve_seconds(const nmm::SparseMatrix& a, int threads, bool automa
     std::abort();
   const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(a.rows());
   Eigen::VectorXd x;
-  double best = 1e300;
-  for (int repeat = 0; repeat < 3; ++repeat) {
-    const auto start = std::chrono::steady_clock::now();
-    if (solver.factorize(a) != nmm::SolveStatus::ok)
-      std::abort();
-    if (solver.solve(rhs, x) != nmm::SolveStatus::ok)
-      std::abort();
-    best = std::min(best, seconds_since(start));
-  }
-  return best;
+  return nmm::bench::best_seconds(
+      3,
+      [&] {
+        if (solver.factorize(a) != nmm::SolveStatus::ok ||
+            solver.solve(rhs, x) != nmm::SolveStatus::ok)
+          std::abort();
+      },
+      3);
 }
 
 } // namespace
