@@ -77,6 +77,8 @@ std::string history_header(std::span<const std::string> monitor_names) {
       header += value;
     }
   }
+  // Columns added after the first release go last: readers that count columns keep working.
+  header += ",load_work";
   return header;
 }
 
@@ -108,6 +110,8 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
         status = std::fprintf(stream_, ",%.17g", value);
     }
   }
+  if (status >= 0)
+    status = std::fprintf(stream_, ",%.17g", report.load_work);
   if (status < 0 || std::fputc('\n', stream_) == EOF || std::fflush(stream_) != 0)
     throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
                      "; is the disk full?");

@@ -42,7 +42,8 @@ inline constexpr std::array<std::string_view, 9> monitor_value_names{"x",  "y", 
                                                                      "vy", "sxx", "syy", "sxy"};
 
 /// The header line of history.csv (without the newline): `step,time,dt,
-/// open_close_iterations,contacts,kinetic_energy` then `m.x,m.y,...,m.sxy` per monitor.
+/// open_close_iterations,contacts,kinetic_energy` then `m.x,m.y,...,m.sxy` per monitor, then
+/// `load_work`.
 [[nodiscard]] std::string history_header(std::span<const std::string> monitor_names);
 
 /// history.csv, written row by row and flushed after every row, so that a run that stops

@@ -153,6 +153,7 @@ struct TimeStepper::Impl {
   /// kinetic energy the run can have (the energy check), J.
   double energy_budget = 0.0;
   bool energy_started = false;
+  double load_work = 0.0;            ///< StepReport::load_work
   std::shared_ptr<const DofMap> map; // of the last step (or try)
   /// Reduced unknowns of every coupling (elements, penalty springs, contacts), flat, with
   /// their starts: what the current plans were made for, compared to the next step's.
@@ -342,6 +343,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     impl_->contact->set_hold_shear(equilibrium);
     ++counters_.contact_searches;
   }
+  double work = 0.0; // of the loads in the step (its last try)
   for (int cut = 0;; ++cut) {
     const double t1 = time_ + dt;
     Clock::time_point clock = Clock::now();
@@ -637,6 +639,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         warnings_.push_back(w.str());
       }
     }
+    work = loads.dot(raw);
     if (dynamic) {
       // Energy check: the kinetic energy can never exceed what the run started with plus the
       // work the loads have done (initial stresses included: their release is that work);
@@ -648,7 +651,6 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         impl_->energy_budget += kinetic_energy(velocity_);
         impl_->energy_started = true;
       }
-      const double work = loads.dot(raw);
       new_velocity = (2.0 / dt) * raw - velocity_; // Shi eq. 2.18-2.19: v1 = 2 d / dt - v0
       const double kinetic = kinetic_energy(new_velocity);
       const double budget = std::max(impl_->energy_budget + work, 0.0);
@@ -664,10 +666,13 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       impl_->energy_budget += work;
       report.kinetic_energy = kinetic; // with the step's element masses
     } else if (equilibrium) {
-      impl_->energy_budget += loads.dot(raw); // stored in the springs, released later
+      impl_->energy_budget += work; // stored in the springs, released later
     }
     break;
   }
+  if (!equilibrium)
+    impl_->load_work += work;
+  report.load_work = impl_->load_work;
 
   Clock::time_point update_clock = Clock::now();
   // Commit: velocities (computed and checked above), stresses, geometry.

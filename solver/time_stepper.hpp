@@ -64,6 +64,10 @@ struct StepReport {
   int step_cuts = 0;             ///< times this step was cut and redone
   double kinetic_energy = 0.0;   ///< J (per metre in plane strain)
   double max_displacement = 0.0; ///< largest step displacement, m
+  /// Work of the loads (body forces, point and curve loads, the release of initial stresses)
+  /// on the step displacements since the first step, the initial equilibrium not counted;
+  /// with the kinetic energy it shows a run's energy balance, J (per metre in plane strain).
+  double load_work = 0.0;
 };
 
 /// Work counters, for summary.json (issue 8: "skip what the scene does not need").

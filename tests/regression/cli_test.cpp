@@ -136,7 +136,7 @@ std::vector<std::vector<double>> read_history(const fs::path& file, const std::s
 const std::string monitor_columns =
     "tip.x,tip.y,tip.ux,tip.uy,tip.vx,tip.vy,tip.sxx,tip.syy,tip.sxy";
 const std::string history_columns =
-    "step,time,dt,open_close_iterations,contacts,kinetic_energy," + monitor_columns;
+    "step,time,dt,open_close_iterations,contacts,kinetic_energy," + monitor_columns + ",load_work";
 
 // ---------------------------------------------------------------------------------------
 // The bundled example
@@ -204,8 +204,9 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
 
   const std::string block = "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
                             "block.syy,block.sxy";
-  const auto rows = read_history(
-      out / "history.csv", "step,time,dt,open_close_iterations,contacts,kinetic_energy," + block);
+  const auto rows = read_history(out / "history.csv",
+                                 "step,time,dt,open_close_iterations,contacts,kinetic_energy," +
+                                     block + ",load_work");
   ASSERT_FALSE(rows.empty());
   const std::vector<double>& last = rows.back();
   EXPECT_DOUBLE_EQ(last[1], 1.0);

@@ -28,13 +28,14 @@ using testing::TempDir;
 // ---------------------------------------------------------------------------------------
 // history.csv
 
-TEST(History, HeaderHasTheContractColumnsThenNineColumnsPerMonitor) {
+TEST(History, HeaderHasTheContractColumnsThenNineColumnsPerMonitorThenTheWorkOfTheLoads) {
   const std::vector<std::string> monitors{"crest", "toe"};
   EXPECT_EQ(history_header(monitors),
             "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
             "crest.x,crest.y,crest.ux,crest.uy,crest.vx,crest.vy,crest.sxx,crest.syy,crest.sxy,"
-            "toe.x,toe.y,toe.ux,toe.uy,toe.vx,toe.vy,toe.sxx,toe.syy,toe.sxy");
-  EXPECT_EQ(history_header({}), "step,time,dt,open_close_iterations,contacts,kinetic_energy");
+            "toe.x,toe.y,toe.ux,toe.uy,toe.vx,toe.vy,toe.sxx,toe.syy,toe.sxy,load_work");
+  EXPECT_EQ(history_header({}),
+            "step,time,dt,open_close_iterations,contacts,kinetic_energy,load_work");
 }
 
 TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
@@ -48,6 +49,7 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   report.open_close_iterations = 2;
   report.contacts = 5;
   report.kinetic_energy = 1.0e-300;
+  report.load_work = -0.1;
   MonitorValues m;
   m.x = std::numbers::pi;
   m.sxy = -2.5e9;
@@ -64,7 +66,8 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   std::istringstream cells(row);
   for (std::string cell; std::getline(cells, cell, ',');)
     fields.push_back(cell);
-  ASSERT_EQ(fields.size(), 6u + 9u);
+  ASSERT_EQ(fields.size(), 6u + 9u + 1u);
+  EXPECT_EQ(std::stod(fields.back()), -0.1);
   EXPECT_EQ(fields[0], "7");
   EXPECT_EQ(std::stod(fields[1]), 0.1 + 0.2);
   EXPECT_EQ(std::stod(fields[2]), 1.0 / 3.0);
