@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 namespace nmm {
@@ -259,28 +260,49 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     carried_by_slave.emplace(state.slave, key);
     carried_by_master.emplace(state.master, key);
   }
-  auto neighbour = [&](const ContactCandidate& c) -> const Carried* {
-    const bool edge = c.kind == ContactKind::edge_edge;
+  // The carried state of the contact of @p slave against @p master: the one stored under
+  // the same key, or another that had the same slave and master (an angle-to-angle contact
+  // whose candidate changed), or else one whose slave moved on from an adjacent master
+  // (Shi 3.3); *identical tells whether its anchors and offset refer to this pair.
+  auto carried_state = [&](std::uint64_t key, int slave, int master, bool edge,
+                           bool* identical) -> const Carried* {
+    *identical = false;
     auto adjacent = [&](int e, int f) {
       return boundary_.next[at(e)] == f || boundary_.next[at(f)] == e;
     };
-    auto [s0, s1] = carried_by_slave.equal_range(c.slave);
+    const Carried* moved = nullptr;
+    if (const auto it = carried_.find(key); it != carried_.end()) {
+      *identical = it->second.slave == slave && it->second.master == master;
+      if (*identical || !closed(it->second.mode))
+        return &it->second;
+      moved = &it->second; // the same contact on its other entrance line
+    }
+    auto [s0, s1] = carried_by_slave.equal_range(slave);
     for (auto it = s0; it != s1; ++it) {
       const Carried& state = carried_.at(it->second);
-      if (closed(state.mode) && ((it->second & 1U) != 0) == edge &&
-          adjacent(state.master, c.master))
+      if (!closed(state.mode) || ((it->second & 1U) != 0) != edge)
+        continue;
+      if (state.master == master) {
+        *identical = true;
         return &state;
+      }
+      if (moved == nullptr && adjacent(state.master, master))
+        moved = &state;
     }
-    if (!edge)
-      return nullptr;
-    auto [m0, m1] = carried_by_master.equal_range(c.master);
+    if (moved != nullptr || !edge)
+      return moved;
+    auto [m0, m1] = carried_by_master.equal_range(master);
     for (auto it = m0; it != m1; ++it) {
       const Carried& state = carried_.at(it->second);
-      if (closed(state.mode) && (it->second & 1U) != 0 && adjacent(state.slave, c.slave))
+      if (closed(state.mode) && (it->second & 1U) != 0 && adjacent(state.slave, slave))
         return &state;
     }
     return nullptr;
   };
+  // Angle contacts already made, by (vertex, entrance line): two candidates can end on the
+  // same pair (an angle-to-edge contact and an angle-to-angle one whose line is that edge),
+  // and one spring is all the pair may have.
+  std::set<std::pair<int, int>> angle_pairs;
 
   points_.clear();
   groups_.clear();
@@ -313,6 +335,8 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
         p.master = c.alternative_master;
       }
     }
+    if (!g.edge && !angle_pairs.insert({p.slave_edge, p.master}).second)
+      continue;
     const Point2& ma = boundary_.position[at(p.master)];
     const Point2& mb = boundary_.position[at(boundary_.next[at(p.master)])];
     const Point2 tangent = (mb - ma).normalized();
@@ -365,8 +389,8 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     // the slave moved on from, or new. An intact joint, and a contact already touching,
     // start locked (not open for one free-flight iteration: that would take a whole step's
     // worth of penetration first).
-    const auto carried = carried_.find(g.key);
-    const Carried* state = carried != carried_.end() ? &carried->second : neighbour(c);
+    bool same = false;
+    const Carried* state = carried_state(g.key, p.slave_edge, p.master, g.edge, &same);
     const bool touching = *std::min_element(g0.begin(), g0.end()) <= 0.0;
     ContactMode mode = ContactMode::open;
     int sign = 0;
@@ -374,15 +398,26 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     if (state != nullptr) {
       mode = state->mode;
       sign = state->slide_sign;
-      normal_force = carried != carried_.end() ? state->normal : 0.0;
+      normal_force = same ? state->normal : 0.0;
     } else if (lead.bonded || touching) {
       mode = ContactMode::lock;
     }
-    const bool same = carried != carried_.end();
+    if (!g.edge) {
+      // The springs' zero (ContactPoint::offset): a new contact's penetration; a carried one
+      // keeps its own; one taken over from the slave's last edge keeps that one's unless it
+      // now penetrates less.
+      lead.offset = std::min(0.0, g0.front());
+      if (same)
+        lead.offset = state->offset;
+      else if (state != nullptr)
+        lead.offset = std::max(state->offset, lead.offset);
+    }
     auto anchor_of = [&](double u, const Point2& slave) {
       // A lock carried on the same pair keeps its anchors (material points of the master);
-      // otherwise it anchors where the slave is now.
-      return same ? interpolate(state->anchors, u) : projection(c.master, slave);
+      // otherwise it anchors where the slave is now, on its own entrance line (not the
+      // candidate's: an angle-to-angle contact's spring may be on the alternative line, and
+      // an anchor measured along the other edge put millimetres of shear into the spring).
+      return same ? interpolate(state->anchors, u) : projection(p.master, slave);
     };
     if (g.edge) {
       // Springs where the edges press on each other; all along an intact joint.
@@ -466,7 +501,7 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   // Normal gap (material on the left of a -> b; positive on the void side):
   // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
   // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
-  k.g0 = (slave - a).dot(perp(b - a)) / l;
+  k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset;
   add(k.hn, slave_element, slave_dofs, slave, perp(b - a) / l);
   add(k.hn, master_element, master_dofs, a, perp(slave - b) / l);
   add(k.hn, master_element, master_dofs, b, Point2(-perp(slave - a) / l));
@@ -560,7 +595,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       const Kinematics k = kinematics(model, p);
       const double ds = k.tangential(raw);
       measure[at(q)] = {k.gap(raw), k.s0 + ds, ds};
-      p.gap = measure[at(q)].gap;
+      p.gap = measure[at(q)].gap + p.offset;
     }
     // Modes by Shi's table (8.2), decided per contact from its resultants: an angle contact
     // is one point; the Gauss points of an edge-to-edge pair decide together, as one joint
@@ -796,7 +831,7 @@ void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
     // chatter rule) is kept so that the next detection does not drop it.
     const bool penetrating =
         std::any_of(points_.begin() + g.first, points_.begin() + g.first + g.count,
-                    [](const ContactPoint& p) { return p.gap < 0.0; });
+                    [](const ContactPoint& p) { return p.gap < p.offset; });
     if (!closed(lead.mode) && !penetrating)
       continue;
     Carried state;
@@ -804,6 +839,9 @@ void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
     state.master = lead.master;
     state.mode = lead.mode;
     state.slide_sign = lead.slide_sign;
+    // An open contact's offset follows its gap up (it never grows: a permanent overlap is
+    // one the springs found, not one they make).
+    state.offset = std::min(0.0, std::max(lead.offset, lead.gap));
     for (int q = 0; q < g.count; ++q) {
       const ContactPoint& p = points_[at(g.first + q)];
       state.normal += p.normal_force;

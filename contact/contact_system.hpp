@@ -85,6 +85,14 @@ struct ContactPoint {
   double normal_force = 0.0; ///< compressive positive, N
   double shear_force = 0.0;  ///< along the master edge, N
   double gap = 0.0;          ///< normal gap at the end of the last solve (negative: penetration)
+  /// Angle contacts: the gap at which the normal spring starts to push (<= 0). A contact that
+  /// appears already penetrating, because the contact it replaces had softer springs (a
+  /// face that turned past the angle criterion: edge-to-edge springs on a short pressed part
+  /// let a corner sink in hundreds of times deeper than a point spring would), takes that
+  /// penetration as its springs' zero instead of throwing the bodies apart. It rises with
+  /// the gap once the contact opens, and is 0 for everything that meets in the ordinary
+  /// way. The springs push with p (offset - gap).
+  double offset = 0.0;
 };
 
 /// What one open-close iteration found.
@@ -201,6 +209,7 @@ private:
     ContactMode mode = ContactMode::open;
     int slide_sign = 0;
     double normal = 0.0; ///< resultant normal force
+    double offset = 0.0; ///< ContactPoint::offset of an angle contact
     /// (u, anchor) of every point: the anchors of a locked pair as a function of the slave
     /// material point.
     std::vector<std::pair<double, double>> anchors;

@@ -5,10 +5,12 @@
 #include "verification_support.hpp"
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <set>
 
 namespace nmm {
 namespace {
@@ -315,6 +317,64 @@ TEST(Stack, BlocksAtRestStayAtRest) {
   std::printf("stack: largest drift %.3e m over 1e4 steps, %ld cuts\n", drift,
               stepper.counters().step_cuts);
   EXPECT_LT(drift, 1e-6);
+}
+
+TEST(AngleContacts, OverlappingCornersStartWithoutShearAndWithoutPushing) {
+  // As when a face turns past the angle criterion and angle contacts take over from an
+  // edge-to-edge one, a corner starts a step inside another body's corner: a square
+  // [0, 1]^2 and a quadrilateral whose 55-degree corner (faces at 5 and 60 degrees) starts
+  // at (1.002, 1.001) and is moved by (-3, -2.5) mm, 1 mm into the square's right face and
+  // 1.5 mm below its top. Every new angle contact must start locked with no shear (its
+  // anchor where its slave is, on its own entrance line) and with its springs' zero at the
+  // penetration it was found with (offset = gap: nothing pushes the bodies apart), and the
+  // corner has one spring against the right face, although both an angle-to-edge and the
+  // corners' angle-to-angle contact lead to that pair (it had two). Tolerances: rounding of
+  // coordinates of order 1 m.
+  const ElasticMaterial rock = elastic(1e10, 0.25, 2500.0, PlaneCondition::strain);
+  const Point2 c(1.002, 1.001);
+  const auto ray = [&](double degrees, double length) {
+    return Point2(c +
+                  length * Point2(std::cos(degrees * pi / 180.0), std::sin(degrees * pi / 180.0)));
+  };
+  testing::Setup s =
+      testing::make_setup({testing::rectangle("square", 0.0, 0.0, 1.0, 1.0),
+                           {"corner", {{{c, ray(5.0, 1.0), ray(35.0, 1.2), ray(60.0, 1.0)}, {}}}}},
+                          {}, {}, nullptr, 0.25, rock, 0);
+  ASSERT_EQ(s.model.blocks.size(), 2U);
+  Eigen::VectorXd raw = Eigen::VectorXd::Zero(s.model.n_dofs());
+  const int moved =
+      s.model.elements[static_cast<std::size_t>(s.model.find_element(ray(35.0, 0.5), 1e-9))].block;
+  for (int k = 0; k < s.model.n_covers(); ++k) {
+    if (s.model.covers[static_cast<std::size_t>(k)].block == moved) {
+      raw(s.model.dof(k, 0)) = -0.003;
+      raw(s.model.dof(k, 1)) = -0.0025;
+    }
+  }
+  std::vector<MaterialPoint> none;
+  s.model.move(raw, none);
+  auto contact = contact_for(s.model, 40.0 * rock.young, {30.0 * pi / 180.0, 0.0, 0.0});
+  contact->begin_step(s.model, 0.01);
+  const ContactBoundary b = contact_boundary(s.model);
+  const auto at = [](int i) { return static_cast<std::size_t>(i); };
+  std::set<std::pair<int, int>> pairs;
+  for (const ContactPoint& p : contact->points()) {
+    EXPECT_EQ(p.key & 1U, 0U) << "no faces are parallel";
+    EXPECT_TRUE(pairs.insert({p.slave_edge, p.master}).second)
+        << "two springs of vertex " << p.slave_edge << " against edge " << p.master;
+    EXPECT_EQ(p.mode, ContactMode::lock) << "the corners overlap";
+    const Point2& a = b.position[at(p.master)];
+    const Point2& e = b.position[at(b.next[at(p.master)])];
+    const Point2 tangent = (e - a).normalized();
+    const Point2 normal(tangent.y(), -tangent.x());
+    EXPECT_NEAR((p.slave - (a + p.anchor * (e - a))).dot(tangent), 0.0, 1e-12);
+    EXPECT_NEAR(p.offset, std::min(0.0, (p.slave - a).dot(normal)), 1e-12);
+  }
+  // The corner against the square's right face, 1 mm in.
+  const Point2 tip = c + Point2(-0.003, -0.0025);
+  EXPECT_TRUE(
+      std::any_of(contact->points().begin(), contact->points().end(), [&](const ContactPoint& p) {
+        return (p.slave - tip).norm() < 1e-9 && std::abs(p.offset + 0.001) < 1e-12;
+      }));
 }
 
 TEST(Drop, BlockDroppedOnABaseNeitherSinksInNorGainsEnergy) {
