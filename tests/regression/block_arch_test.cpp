@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// examples/09_block_arch end to end (label regression;slow: about 3 s per run): the
+// examples/09_block_arch end to end (label regression;slow: about 3.5 s per run): the
 // voussoir arch stands under 0.7 times its limit-analysis collapse load and collapses under
 // 1.5 times it (the case as shipped) by the mechanism limit_analysis.py predicts, hinges
 // opening at joints 0 and 11 (intrados), 3 and 8 (extrados), 5 and 6 (intrados).
@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -149,7 +150,7 @@ std::string case_text_with(double force, double end_time) {
   text = replaced(text, "geometry = \"block_arch.geo\"",
                   "geometry = \"" + (example / "block_arch.geo").string() + "\"");
   text = replaced(text, "force = [0.0, -77195.0]", "force = [0.0, " + std::to_string(-force) + "]");
-  return replaced(text, "end_time = 0.18", "end_time = " + std::to_string(end_time));
+  return replaced(text, "end_time = 0.3 ", "end_time = " + std::to_string(end_time) + " ");
 }
 
 /// Runs examples/09_block_arch as the user does (testing::Example).
@@ -183,24 +184,50 @@ TEST_F(BlockArch, StandsUnderSevenTenthsOfItsCollapseLoad) {
   EXPECT_LT(std::abs(uy.back() - at_0_2), 2e-5) << "the arch still moves under a constant load";
 }
 
-TEST_F(BlockArch, CollapsesUnderOneAndAHalfTimesItByThePredictedHinges) {
-  // The case as shipped: 1.5 P_c, ramped in over 0.1 s, 0.18 s. Rigid blocks turning about
-  // the predicted hinges would lower the key block by 4.35 mm in that time
-  // (limit_analysis.py), plus about 0.4 mm elastic; the model's own collapse load is 0.90 to
-  // 0.95 P_c (examples/09_block_arch/README.md), so it falls more.
-  // Measured: 6.45 mm, at 0.132 m/s. Bounds: more than 4 mm, faster than 0.08 m/s.
+TEST_F(BlockArch, CollapsesUnderOneAndAHalfTimesItByThePredictedHingesWithoutGainingEnergy) {
+  // The case as shipped: 1.5 P_c, ramped in over 0.1 s, 0.3 s: the crown falls several
+  // centimetres and the hinges turn well past the 3 degrees at which the contacts of an
+  // opening joint change from an edge-to-edge pair to angle contacts (that change used to
+  // throw the blocks apart: docs/formulation.md).
   const ExampleRun run = this->run("09_block_arch");
   const fs::path out = dir() / "09_block_arch";
   EXPECT_NE(run.process.out.find("warnings: none"), std::string::npos) << run.process.out;
-  EXPECT_NEAR(run.last("time"), 0.18, 1e-9);
-  EXPECT_LT(run.last("key.uy"), -4e-3) << "the key block did not fall";
-  EXPECT_LT(run.last("key.vy"), -0.08) << "the key block is not falling any more";
+  EXPECT_NEAR(run.last("time"), 0.3, 1e-9);
   EXPECT_LT(std::abs(run.last("key.ux")), 1e-4) << "symmetric: the key block drops";
+  // The fall. Rigid blocks on the predicted hinges (limit_analysis.py, finite rotations)
+  // lower the crown by 48.6 mm in 0.3 s under 1.5 P_c. nmm's arch carries 0.90 to 0.95 P_c
+  // (README): it falls as rigid blocks do under 1.5 P_c plus the capacity it lacks, 1.55
+  // to 1.6 P_c: 58.2 to 69.1 mm (--factor 1.55, 1.6). Measured: 64.6 mm.
+  EXPECT_LT(run.last("key.uy"), -58.2e-3);
+  EXPECT_GT(run.last("key.uy"), -69.1e-3);
+  // The energy balance. Nothing but the contacts can put energy in, and the collapse of
+  // nearly rigid blocks turning about hinges dissipates little: the kinetic energy stays
+  // below the work of the loads (it starts at rest) and, once the mechanism moves (from
+  // 0.15 s, 3 mm of fall), above nine tenths of it. Measured: at most 0.998 of it; at
+  // least 0.954 (where hinges change from edge-to-edge to angle contacts, which absorb
+  // the springs' penetration).
+  const std::vector<double>& time = run.history.at("time");
+  const std::vector<double>& kinetic = run.history.at("kinetic_energy");
+  const std::vector<double>& work = run.history.at("load_work");
+  double most = 0.0;
+  double least = 1.0;
+  for (std::size_t k = 0; k < time.size(); ++k) {
+    EXPECT_LE(kinetic[k], work[k]) << "at t = " << time[k] << " s";
+    if (work[k] > 0.0)
+      most = std::max(most, kinetic[k] / work[k]);
+    if (time[k] >= 0.15)
+      least = std::min(least, kinetic[k] / work[k]);
+  }
+  std::printf("block arch: key block fell %.2f mm; kinetic energy / work of the loads at most "
+              "%.4f, from 0.15 s at least %.4f\n",
+              -1e3 * run.last("key.uy"), most, least);
+  EXPECT_GT(least, 0.9);
 
-  // The last step file: the six predicted hinges open (measured 5.2, 13.8 and 8.8 mm at the
-  // springings, the haunches and the key block), by the same amount on both sides; every
-  // other joint stays closed (measured below 0.1 mm; a joint the mechanism did not predict
-  // would open by millimetres, like the others).
+  // The last step file: the six predicted hinges open, by the same amount on both sides;
+  // every other joint stays closed (a joint the mechanism did not predict would open by
+  // centimetres, like the others). Measured: 33.2 mm at the springings, 95.4 mm at joints 3
+  // and 8, 62.2 mm at the key block's joints, the same on both sides to 0.02 mm; the
+  // others below 0.07 mm.
   std::string last_step;
   for (const PvdEntry& entry : read_pvd(out / "case.pvd")) {
     if (entry.part == 0)
@@ -211,19 +238,21 @@ TEST_F(BlockArch, CollapsesUnderOneAndAHalfTimesItByThePredictedHinges) {
   ASSERT_EQ(opening.size(), static_cast<std::size_t>(n_voussoirs + 1));
   const std::map<int, std::pair<bool, double>> hinges = {
       // joint: (opens at the intrados?, at least this much)
-      {0, {true, 2e-3}}, {3, {false, 5e-3}}, {5, {true, 3e-3}},
-      {6, {true, 3e-3}}, {8, {false, 5e-3}}, {11, {true, 2e-3}}};
+      {0, {true, 20e-3}}, {3, {false, 60e-3}}, {5, {true, 40e-3}},
+      {6, {true, 40e-3}}, {8, {false, 60e-3}}, {11, {true, 20e-3}}};
   for (int k = 0; k <= n_voussoirs; ++k) {
     const JointOpening& o = opening[static_cast<std::size_t>(k)];
+    std::printf("joint %2d: intrados %+.3f mm, extrados %+.3f mm\n", k, 1e3 * o.at_intrados,
+                1e3 * o.at_extrados);
     const auto hinge = hinges.find(k);
     if (hinge == hinges.end()) {
       EXPECT_LT(std::max(std::abs(o.at_intrados), std::abs(o.at_extrados)), 0.5e-3)
           << "joint " << k << " opened";
       continue;
     }
-    const auto [at_intrados, least] = hinge->second;
+    const auto [at_intrados, least_opening] = hinge->second;
     // The hinge is the other end, closed.
-    EXPECT_GT(at_intrados ? o.at_intrados : o.at_extrados, least) << "joint " << k;
+    EXPECT_GT(at_intrados ? o.at_intrados : o.at_extrados, least_opening) << "joint " << k;
     EXPECT_LT(std::abs(at_intrados ? o.at_extrados : o.at_intrados), 0.5e-3) << "joint " << k;
     const JointOpening& mirror = opening[static_cast<std::size_t>(n_voussoirs - k)];
     EXPECT_NEAR(o.at_intrados, mirror.at_intrados, 0.5e-3) << "joint " << k;
