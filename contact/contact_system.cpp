@@ -352,7 +352,6 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
           weaker(weaker(edge_strength_[at(v)], edge_strength_[at(boundary_.previous[at(v)])]),
                  edge_strength_[at(p.master)]);
       p.bonded = edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
-      p.anchor = projection(p.master, p.slave);
       g.count = 1;
       points_.push_back(p);
       g0.push_back((p.slave - ma).dot(normal));

@@ -149,9 +149,10 @@ struct TimeStepper::Impl {
   /// Scalar consistent mass of every element (n x n each, times density and thickness, one
   /// after the other), kept from the assembly for the kinetic energy of the new velocities.
   std::vector<double> element_mass;
-  /// Kinetic energy at the first dynamic step plus the work of the loads since: the most
-  /// kinetic energy the run can have (the energy check), J.
-  double energy_budget = 0.0;
+  /// Kinetic energy at the first dynamic step plus the work of the loads in the initial
+  /// equilibrium (stored in the springs, released later), J: with load_work, the most
+  /// kinetic energy the run can have (the energy check).
+  double start_energy = 0.0;
   bool energy_started = false;
   double load_work = 0.0;            ///< StepReport::load_work
   std::shared_ptr<const DofMap> map; // of the last step (or try)
@@ -648,12 +649,12 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       // through a penetration they never had): it is cut, and the run stops if cutting
       // cannot cure it, rather than carry on with a meaningless answer.
       if (!impl_->energy_started) {
-        impl_->energy_budget += kinetic_energy(velocity_);
+        impl_->start_energy += kinetic_energy(velocity_);
         impl_->energy_started = true;
       }
       new_velocity = (2.0 / dt) * raw - velocity_; // Shi eq. 2.18-2.19: v1 = 2 d / dt - v0
       const double kinetic = kinetic_energy(new_velocity);
-      const double budget = std::max(impl_->energy_budget + work, 0.0);
+      const double budget = std::max(impl_->start_energy + impl_->load_work + work, 0.0);
       if (kinetic > 10.0 * budget + std::numeric_limits<double>::min()) {
         if (cut < options_.max_step_cuts) {
           dt /= 3.0;
@@ -663,10 +664,9 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         }
         throw NumericalError(energy_message(model_, new_velocity, step_ + 1, kinetic, budget));
       }
-      impl_->energy_budget += work;
       report.kinetic_energy = kinetic; // with the step's element masses
     } else if (equilibrium) {
-      impl_->energy_budget += work; // stored in the springs, released later
+      impl_->start_energy += work;
     }
     break;
   }
