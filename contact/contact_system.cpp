@@ -471,13 +471,12 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   const int slave_element = edge_element_[at(slave_edge)];
   const int master_element = edge_element_[at(master)];
   Kinematics k;
-  const ElementDofs slave_dofs = model.element_dofs(slave_element);
-  const ElementDofs master_dofs = model.element_dofs(master_element);
-  for (Eigen::Index i = 0; i < slave_dofs.size(); ++i)
-    k.dofs.push_back(slave_dofs(i));
-  for (Eigen::Index i = 0; i < master_dofs.size(); ++i) {
-    if (std::find(k.dofs.begin(), k.dofs.end(), master_dofs(i)) == k.dofs.end())
-      k.dofs.push_back(master_dofs(i));
+  const std::span<const int> slave_dofs = model.element_dofs(slave_element);
+  const std::span<const int> master_dofs = model.element_dofs(master_element);
+  k.dofs.assign(slave_dofs.begin(), slave_dofs.end());
+  for (const int d : master_dofs) {
+    if (std::find(k.dofs.begin(), k.dofs.end(), d) == k.dofs.end())
+      k.dofs.push_back(d);
   }
   const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
   k.hn = Eigen::VectorXd::Zero(n);
@@ -486,12 +485,12 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
     return static_cast<Eigen::Index>(std::find(k.dofs.begin(), k.dofs.end(), raw) - k.dofs.begin());
   };
   // Adds T_element(x)^T c to h.
-  auto add = [&](Eigen::VectorXd& h, int element, const ElementDofs& dofs, const Point2& x,
+  auto add = [&](Eigen::VectorXd& h, int element, std::span<const int> dofs, const Point2& x,
                  const Point2& c) {
-    const InterpolationMatrix t = model.shape(element).interpolation_at(x);
-    const ElementVector contribution = t.transpose() * c;
-    for (Eigen::Index i = 0; i < dofs.size(); ++i)
-      h(local(dofs(i))) += contribution(i);
+    const PointInterpolation t = model.shape(element).interpolation_at(x);
+    const Eigen::VectorXd contribution = t.transpose() * c;
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      h(local(dofs[i])) += contribution(static_cast<Eigen::Index>(i));
   };
   const Point2& a = boundary_.position[at(master)];
   const Point2& b = boundary_.position[at(boundary_.next[at(master)])];

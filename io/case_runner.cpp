@@ -91,18 +91,6 @@ ElasticMaterial elastic_material(const MaterialSpec& spec) {
   return m;
 }
 
-const char* model_name(MaterialModel model) {
-  switch (model) {
-  case MaterialModel::nmm:
-    return "nmm";
-  case MaterialModel::dda:
-    return "dda";
-  case MaterialModel::vem:
-    return "vem";
-  }
-  return "?";
-}
-
 Ramp ramp_of(const LoadSpec& load) { return {load.ramp_start, load.ramp_end}; }
 
 /// The curve a `[[boundary]]` or `[[load]]` names, checked to touch the material.
@@ -242,16 +230,6 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
 // The analysis
 
 CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_(std::move(spec)) {
-  // Refuse what cannot run yet before the (possibly long) geometry work.
-  for (const MaterialSpec& material : spec_.materials) {
-    if (material.model != MaterialModel::nmm) {
-      fail(spec_, material.line,
-           "[materials." + material.name + "] model = \"" + model_name(material.model) +
-               "\" is not yet supported (only \"nmm\" regions run so far; DDA and VEM blocks "
-               "are planned); use model = \"nmm\" for now");
-    }
-  }
-
   geometry_ = build_case_geometry(spec_, on_phase);
   const PhysicalMesh& physical = geometry_.physical;
   warnings_ = spec_.warnings;
@@ -264,6 +242,12 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
     materials.push_back(elastic_material(spec_.materials[at(m)]));
   ModelOptions model_options;
   model_options.order = spec_.cover_mesh.order;
+  for (const int m : geometry_.region_material) {
+    const MaterialModel kind = spec_.materials[at(m)].model;
+    model_options.region_kinds.push_back(kind == MaterialModel::dda   ? ElementKind::dda
+                                         : kind == MaterialModel::vem ? ElementKind::vem
+                                                                      : ElementKind::nmm);
+  }
   model_ = make_model(geometry_.covers, geometry_.math, std::move(materials), model_options);
 
   const BoundingBox box = material_bounding_box(physical);

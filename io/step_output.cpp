@@ -73,8 +73,8 @@ PolygonMeshData make_step_data(const Model& model,
 
   for (int e = 0; e < model.n_elements(); ++e) {
     const ModelElement& element = model.elements[static_cast<std::size_t>(e)];
-    const NmmShape shape = model.shape(e);
-    const ElementVector values = model.element_values(e, velocity);
+    const ElementShape shape = model.shape(e);
+    const Eigen::VectorXd values = model.element_values(e, velocity);
     const std::span<const double> v(values.data(), static_cast<std::size_t>(values.size()));
     const auto add_loop = [&](const Loop& loop) {
       std::vector<int> indices;
@@ -100,7 +100,7 @@ PolygonMeshData make_step_data(const Model& model,
       element_id.push_back(e);
       material.push_back(element.material);
       block.push_back(element.block);
-      kind.push_back(static_cast<std::int32_t>(ElementKind::nmm));
+      kind.push_back(static_cast<std::int32_t>(element.kind));
     }
   }
   NMM_ASSERT(initial_points.size() == data.points.size(),

@@ -15,9 +15,6 @@
 
 namespace nmm {
 
-/// Element kinds of the `kind` cell array (DESIGN.md "special covers").
-enum class ElementKind { nmm = 0, dda = 1, vem = 2 };
-
 /// Principal stresses of a plane stress state (sxx, syy, sxy), Pa, s1 >= s2, and the unit
 /// direction of s1 (angle 0.5 atan2(2 sxy, sxx - syy) from x; (1, 0) for an isotropic
 /// state, where every direction is principal).

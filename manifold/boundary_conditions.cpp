@@ -12,9 +12,9 @@ namespace {
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-void add_local(const ElementDofs& dofs, const ElementVector& local, Eigen::VectorXd& f) {
-  for (Eigen::Index i = 0; i < dofs.size(); ++i)
-    f(dofs(i)) += local(i);
+void add_local(std::span<const int> dofs, const Eigen::VectorXd& local, Eigen::VectorXd& f) {
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    f(dofs[i]) += local(static_cast<Eigen::Index>(i));
 }
 
 } // namespace
@@ -54,9 +54,8 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
   for (const SupportPoint& s : supports) {
     if (s.method != SupportMethod::exact || s.point.element < 0)
       continue;
-    const NmmShape shape = model.shape(s.point.element);
-    const ShapeVector phi = shape.values_at(s.point.position);
-    const ElementDofs dofs = model.element_dofs(s.point.element);
+    const PointInterpolation t = model.shape(s.point.element).interpolation_at(s.point.position);
+    const std::span<const int> dofs = model.element_dofs(s.point.element);
     for (int component = 0; component < 2; ++component) {
       if ((component == 0 && !s.fix_x) || (component == 1 && !s.fix_y))
         continue;
@@ -64,9 +63,10 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
       row.origin = s.origin + " at " + point_text(s.point.position, 6);
       const Point2 remaining = s.ramp.at(time) * s.displacement - (s.point.position - s.start);
       row.value = component == 0 ? remaining.x() : remaining.y();
-      for (int a = 0; a < shape.n_shapes(); ++a) {
-        if (phi(a) != 0.0)
-          row.terms.emplace_back(dofs(2 * a + component), phi(a));
+      for (std::size_t j = 0; j < dofs.size(); ++j) {
+        const double coefficient = t(component, static_cast<Eigen::Index>(j));
+        if (coefficient != 0.0)
+          row.terms.emplace_back(dofs[j], coefficient);
       }
       rows.push_back(std::move(row));
     }
@@ -76,11 +76,11 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
 
 SupportSpring
 support_spring(const Model& model, const SupportPoint& support, double stiffness, double time) {
-  const InterpolationMatrix t =
+  const PointInterpolation t =
       model.shape(support.point.element).interpolation_at(support.point.position);
   const Point2 remaining =
       support.ramp.at(time) * support.displacement - (support.point.position - support.start);
-  SupportSpring spring{ElementMatrix::Zero(t.cols(), t.cols()), ElementVector::Zero(t.cols())};
+  SupportSpring spring{Eigen::MatrixXd::Zero(t.cols(), t.cols()), Eigen::VectorXd::Zero(t.cols())};
   if (support.fix_x) {
     spring.stiffness += stiffness * t.row(0).transpose() * t.row(0);
     spring.load += stiffness * remaining.x() * t.row(0).transpose();
@@ -92,27 +92,24 @@ support_spring(const Model& model, const SupportPoint& support, double stiffness
   return spring;
 }
 
-ElementVector element_load(const Model& model,
-                           int element,
-                           const NmmElementIntegrals& integrals,
-                           std::span<const BodyLoad> body_loads,
-                           double time) {
+void element_load(const Model& model,
+                  int element,
+                  const ElementIntegrals& integrals,
+                  std::span<const BodyLoad> body_loads,
+                  double time,
+                  Eigen::VectorXd& out) {
   const ElasticMaterial& material = model.material_of(element);
   Point2 force = Point2::Zero();
   for (const BodyLoad& load : body_loads)
     force += load.ramp.at(time) * material.density * load.acceleration;
-  ElementVector f = integrals.body_force(force, material.thickness_factor());
-  const ModelElement& e = model.elements[at(element)];
-  if (!e.stress.coefficients.isZero())
-    f += integrals.initial_stress_load(e.stress, material.thickness_factor());
-  return f;
+  integrals.loads(force, model.elements[at(element)].stress, material.thickness_factor(), out);
 }
 
 void add_point_load(const Model& model, const PointLoad& load, double time, Eigen::VectorXd& f) {
   const double factor = load.ramp.at(time);
   if (factor == 0.0 || load.point.element < 0)
     return;
-  const InterpolationMatrix t =
+  const PointInterpolation t =
       model.shape(load.point.element).interpolation_at(load.point.position);
   add_local(model.element_dofs(load.point.element), t.transpose() * (factor * load.force), f);
 }
@@ -137,8 +134,8 @@ void add_curve_load(const Model& model, const CurveLoad& load, double time, Eige
     const Point2 right_normal = Point2(along.y(), -along.x()) / length;
     const Point2 outward = left ? right_normal : Point2(-right_normal);
     const double thickness = model.material_of(element).thickness_factor();
-    const NmmShape shape = model.shape(element);
-    ElementVector local = ElementVector::Zero(shape.n_dofs());
+    const ElementShape shape = model.shape(element);
+    Eigen::VectorXd local = Eigen::VectorXd::Zero(shape.n_dofs());
     // Constant loads: two Gauss points are exact. Loads given as fields of position: five
     // points per piece, exact to degree 9, so a smooth field is integrated to a tiny
     // fraction of the discretisation error.
@@ -159,7 +156,7 @@ void add_curve_load(const Model& model, const CurveLoad& load, double time, Eige
       Point2 traction = (load.is_pressure ? Point2::Zero() : load.traction) - pressure * outward;
       if (load.traction_at)
         traction += load.traction_at(x);
-      const InterpolationMatrix t = shape.interpolation_at(x);
+      const PointInterpolation t = shape.interpolation_at(x);
       local += w * length * thickness * factor * (t.transpose() * traction);
     }
     add_local(model.element_dofs(element), local, f);

@@ -98,22 +98,23 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
 
 /// A penalty support point on its element's raw unknowns (Shi eq. 2.27).
 struct SupportSpring {
-  ElementMatrix stiffness; ///< stiffness (Tx^T Tx and/or Ty^T Ty)
+  Eigen::MatrixXd stiffness; ///< stiffness (Tx^T Tx and/or Ty^T Ty)
   /// The load pulling the point towards its imposed displacement at the time asked for:
   /// stiffness T^T (ramp(time) u_imposed - (x - x_start)) on the held components.
-  ElementVector load;
+  Eigen::VectorXd load;
 };
 [[nodiscard]] SupportSpring
 support_spring(const Model& model, const SupportPoint& support, double stiffness, double time);
 
-/// The local load vector of element @p element at time @p time from its integrals: every
-/// body load (Shi eq. 2.14, density times acceleration) and its initial-stress load
-/// -∫ B^T sigma0 (eq. 2.10).
-[[nodiscard]] ElementVector element_load(const Model& model,
-                                         int element,
-                                         const NmmElementIntegrals& integrals,
-                                         std::span<const BodyLoad> body_loads,
-                                         double time);
+/// The local load vector of element @p element at time @p time from its integrals, into
+/// @p out: every body load (Shi eq. 2.14, density times acceleration) and its initial-stress
+/// load -∫ B^T sigma0 (eq. 2.10).
+void element_load(const Model& model,
+                  int element,
+                  const ElementIntegrals& integrals,
+                  std::span<const BodyLoad> body_loads,
+                  double time,
+                  Eigen::VectorXd& out);
 
 /// Adds a point or curve load at time @p time to the raw load vector @p f.
 void add_point_load(const Model& model, const PointLoad& load, double time, Eigen::VectorXd& f);

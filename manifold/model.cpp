@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "manifold/model.hpp"
 
+#include "manifold/simplex_integration.hpp"
 #include "mesh/error.hpp"
 #include "mesh/union_find.hpp"
 
@@ -71,32 +72,61 @@ Point2 turned(const Point2& v) { return {-v.y(), v.x()}; }
 
 std::array<Point2, 3> Model::triangle(int element) const {
   const auto& c = elements[at(element)].covers;
+  NMM_ASSERT(c.size() == 3, "triangle() of an element that is not an NMM element");
   return {covers[at(c[0])].position, covers[at(c[1])].position, covers[at(c[2])].position};
 }
 
-NmmShape Model::shape(int element) const { return NmmShape(triangle(element), order, scale); }
+NmmShape Model::nmm_shape(int element) const { return NmmShape(triangle(element), order, scale); }
 
-ElementDofs Model::element_dofs(int element) const {
-  const int per_cover = dofs_per_cover();
-  ElementDofs dofs(3 * per_cover);
-  int k = 0;
-  for (const int c : elements[at(element)].covers) {
-    for (int j = 0; j < per_cover; ++j)
-      dofs(k++) = dof(c, j);
+ElementShape Model::shape(int element) const {
+  const ModelElement& e = elements[at(element)];
+  switch (e.kind) {
+  case ElementKind::dda:
+    return ElementShape(DdaShape(covers[at(e.covers.front())].position));
+  case ElementKind::vem:
+    return ElementShape(VemShape(e.polygons));
+  case ElementKind::nmm:
+    break;
   }
-  return dofs;
+  return ElementShape(nmm_shape(element));
 }
 
-ElementVector Model::element_values(int element, const Eigen::VectorXd& raw) const {
-  const ElementDofs dofs = element_dofs(element);
-  ElementVector values(dofs.size());
-  for (Eigen::Index i = 0; i < dofs.size(); ++i)
-    values(i) = raw(dofs(i));
+int Model::cover_of_dof(int dof) const {
+  const auto it = std::upper_bound(covers.begin(), covers.end(), dof,
+                                   [](int d, const ModelCover& c) { return d < c.first_dof; });
+  NMM_ASSERT(it != covers.begin(), "dof index out of range");
+  return static_cast<int>(it - covers.begin()) - 1;
+}
+
+void Model::number_dofs() {
+  n_dofs_ = 0;
+  for (ModelCover& cover : covers) {
+    if (cover.n_dofs == 0)
+      cover.n_dofs = cover.kind == ElementKind::dda   ? dda_block_dofs
+                     : cover.kind == ElementKind::vem ? 2
+                                                      : dofs_per_cover();
+    cover.first_dof = n_dofs_;
+    n_dofs_ += cover.n_dofs;
+  }
+  for (ModelElement& element : elements) {
+    element.dofs.clear();
+    for (const int c : element.covers) {
+      for (int j = 0; j < covers[at(c)].n_dofs; ++j)
+        element.dofs.push_back(dof(c, j));
+    }
+  }
+}
+
+Eigen::VectorXd Model::element_values(int element, const Eigen::VectorXd& raw) const {
+  const std::span<const int> dofs = element_dofs(element);
+  Eigen::VectorXd values(static_cast<Eigen::Index>(dofs.size()));
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    values(static_cast<Eigen::Index>(i)) = raw(dofs[i]);
   return values;
 }
 
 Point2 Model::displacement(int element, const Point2& x, const Eigen::VectorXd& raw) const {
-  const ElementVector values = element_values(element, raw);
+  const Eigen::VectorXd values = element_values(element, raw);
   return shape(element).displacement_at(x,
                                         {values.data(), static_cast<std::size_t>(values.size())});
 }
@@ -131,8 +161,8 @@ std::vector<LinearConstraint> Model::extension_relations() const {
     if (cover.extension_element < 0)
       continue;
     const int root = cover.extension_element;
-    const NmmShape root_shape = shape(root);
-    const ElementDofs root_dofs = element_dofs(root);
+    const NmmShape root_shape = nmm_shape(root);
+    const std::span<const int> root_dofs = element_dofs(root);
     const ShapeVector phi = root_shape.values_at(cover.position);
     const std::string origin = "tiny cover of math node " + std::to_string(cover.node);
     for (int component = 0; component < 2; ++component) {
@@ -141,7 +171,7 @@ std::vector<LinearConstraint> Model::extension_relations() const {
       value.preferred_slave = dof(c, component);
       value.terms.emplace_back(dof(c, component), 1.0);
       for (int a = 0; a < root_shape.n_shapes(); ++a)
-        value.terms.emplace_back(root_dofs(2 * a + component), -phi(a));
+        value.terms.emplace_back(root_dofs[at(2 * a + component)], -phi(a));
       relations.push_back(std::move(value));
     }
     if (order == 0)
@@ -163,7 +193,7 @@ std::vector<LinearConstraint> Model::extension_relations() const {
         gradient.terms.emplace_back(slave, 1.0);
         for (int a = 0; a < root_shape.n_shapes(); ++a) {
           const double g = 0.5 * scale * derivative.col(a).dot(at_node + at_reference);
-          gradient.terms.emplace_back(root_dofs(2 * a + component), -g);
+          gradient.terms.emplace_back(root_dofs[at(2 * a + component)], -g);
         }
         relations.push_back(std::move(gradient));
       }
@@ -176,10 +206,12 @@ std::vector<LinearConstraint> Model::dependency_relations() const {
   std::vector<LinearConstraint> relations;
   if (order == 0)
     return relations;
-  // Elements of each block.
+  // NMM elements of each block (DDA and VEM blocks have no dependency).
   std::map<int, std::vector<int>> block_elements;
-  for (int e = 0; e < n_elements(); ++e)
-    block_elements[elements[at(e)].block].push_back(e);
+  for (int e = 0; e < n_elements(); ++e) {
+    if (elements[at(e)].kind == ElementKind::nmm)
+      block_elements[elements[at(e)].block].push_back(e);
+  }
   for (const auto& [block, members] : block_elements) {
     // Rigid clusters: elements sharing two covers (a side of their triangles).
     UnionFind clusters(members.size());
@@ -308,18 +340,11 @@ LinearField3 rotated(const LinearField3& field, double omega) {
 void Model::accumulate_stress(const Eigen::VectorXd& raw) {
   for (int e = 0; e < n_elements(); ++e) {
     ModelElement& element = elements[at(e)];
-    const NmmShape s = shape(e);
-    const ElementVector values = element_values(e, raw);
+    const ElementShape s = shape(e);
+    const Eigen::VectorXd values = element_values(e, raw);
     const std::span<const double> d(values.data(), static_cast<std::size_t>(values.size()));
     const LinearField3 strain = s.strain(d);
-    // Rigid rotation of the step at the element's centre: (dv/dx - du/dy) / 2.
-    double du_dy = 0.0;
-    double dv_dx = 0.0;
-    for (int a = 0; a < s.n_shapes(); ++a) {
-      du_dy += s.dy()(0, a) * d[at(2 * a)];
-      dv_dx += s.dx()(0, a) * d[at(2 * a + 1)];
-    }
-    LinearField3 stress = rotated(element.stress.about(s.origin()), 0.5 * (dv_dx - du_dy));
+    LinearField3 stress = rotated(element.stress.about(s.origin()), s.rotation(d));
     stress.coefficients += elasticity_matrix(material_of(e)) * strain.coefficients;
     element.stress = stress;
   }
@@ -330,35 +355,17 @@ void Model::move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points)
   // Everything is evaluated with the shapes of the start of the step, so covers move last.
   // Consecutive boundary points mostly share an element: its shape is built once for them.
   int cached = -1;
-  std::optional<NmmShape> cached_shape;
-  ElementVector cached_values;
+  std::optional<ElementShape> cached_shape;
+  Eigen::VectorXd cached_values;
   auto moved = [&](int e, const Point2& x) {
     if (e != cached) {
       cached = e;
       cached_shape.emplace(shape(e));
       cached_values = element_values(e, raw);
     }
-    return Point2(x +
-                  cached_shape->displacement_at(
-                      x, {cached_values.data(), static_cast<std::size_t>(cached_values.size())}));
+    return cached_shape->moved(
+        x, {cached_values.data(), static_cast<std::size_t>(cached_values.size())});
   };
-  for (int e = 0; e < n_elements(); ++e) {
-    ModelElement& element = elements[at(e)];
-    const NmmShape s = shape(e);
-    const ElementVector values = element_values(e, raw);
-    const std::span<const double> d(values.data(), static_cast<std::size_t>(values.size()));
-    CompensatedSum area_sum;
-    for (Polygon& polygon : element.polygons) {
-      for (Point2& p : polygon.outer)
-        p += s.displacement_at(p, d);
-      for (Loop& hole : polygon.holes) {
-        for (Point2& p : hole)
-          p += s.displacement_at(p, d);
-      }
-      area_sum += area(polygon);
-    }
-    element.area = area_sum.value();
-  }
   for (BoundaryLoop& loop : loops) {
     for (std::size_t k = 0; k < loop.vertices.size(); ++k) {
       const int e = loop.edges[k].element;
@@ -379,16 +386,165 @@ void Model::move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points)
     if (point.element >= 0)
       point.position = moved(point.element, point.position);
   }
-  // A cover moves with its cover function at its own node: its constant term.
+  // Element polygons last: a VEM block's shape is built from them.
+  for (int e = 0; e < n_elements(); ++e) {
+    ModelElement& element = elements[at(e)];
+    CompensatedSum area_sum;
+    for (Polygon& polygon : element.polygons) {
+      for (Point2& p : polygon.outer)
+        p = moved(e, p);
+      for (Loop& hole : polygon.holes) {
+        for (Point2& p : hole)
+          p = moved(e, p);
+      }
+      area_sum += area(polygon);
+    }
+    element.area = area_sum.value();
+  }
+  // A cover moves with its cover function at its own position: its first two unknowns (for
+  // a DDA block, whose position is its centroid, the same as its exact update).
   for (int c = 0; c < n_covers(); ++c)
     covers[at(c)].position += Point2(raw(dof(c, 0)), raw(dof(c, 1)));
-  // The stress field is attached to the material: its origin (the triangle's centroid, see
+  // The stress field is attached to the material: its origin (the shape's origin, see
   // accumulate_stress()) moves with the element, its coefficients stay.
+  for (int e = 0; e < n_elements(); ++e)
+    elements[at(e)].stress.origin = shape(e).origin();
+}
+
+double Model::largest_displacement(const Eigen::VectorXd& raw) const {
+  double largest = 0.0;
+  for (int c = 0; c < n_covers(); ++c)
+    largest = std::max(largest, Point2(raw(dof(c, 0)), raw(dof(c, 1))).norm());
+  // A DDA block's vertices also turn about its centroid.
   for (int e = 0; e < n_elements(); ++e) {
-    const auto t = triangle(e);
-    elements[at(e)].stress.origin = (t[0] + t[1] + t[2]) / 3.0;
+    const ModelElement& element = elements[at(e)];
+    if (element.kind != ElementKind::dda)
+      continue;
+    const double r = std::abs(raw(dof(element.covers.front(), 2)));
+    if (r == 0.0)
+      continue;
+    const DdaShape s(covers[at(element.covers.front())].position);
+    const Eigen::VectorXd values = element_values(e, raw);
+    const std::span<const double> d(values.data(), static_cast<std::size_t>(values.size()));
+    for (const Polygon& polygon : element.polygons) {
+      for (const Point2& p : polygon.outer)
+        largest = std::max(largest, (s.moved(p, d) - p).norm());
+    }
+  }
+  return largest;
+}
+
+void Model::set_rigid_motion(
+    int cover, const Point2& v0, double omega, const Point2& c, Eigen::VectorXd& raw) const {
+  const ModelCover& mc = covers[at(cover)];
+  const Point2 r = mc.position - c;
+  raw(dof(cover, 0)) = v0.x() - omega * r.y();
+  raw(dof(cover, 1)) = v0.y() + omega * r.x();
+  if (mc.kind == ElementKind::dda) {
+    raw(dof(cover, 2)) = omega;
+    for (int j = 3; j < dda_block_dofs; ++j)
+      raw(dof(cover, j)) = 0.0;
+  } else if (mc.kind == ElementKind::nmm && order > 0) {
+    raw(dof(cover, 2)) = 0.0;
+    raw(dof(cover, 3)) = omega * scale;  // dv/dx L
+    raw(dof(cover, 4)) = -omega * scale; // du/dy L
+    raw(dof(cover, 5)) = 0.0;
   }
 }
+
+namespace {
+
+/// One DDA or VEM element per block of a special region (the blocks without NMM elements),
+/// with its cover(s); the block's loop edges and curve pieces point at it.
+void add_block_elements(Model& model, const std::vector<ElementKind>& region_kinds) {
+  std::vector<int> element_of_block(model.blocks.size(), -1);
+  for (std::size_t b = 0; b < model.blocks.size(); ++b) {
+    const Block& block = model.blocks[b];
+    if (!block.elements.empty() || block.materials.empty())
+      continue;
+    const int material = block.materials.front();
+    const ElementKind kind =
+        at(material) < region_kinds.size() ? region_kinds[at(material)] : ElementKind::nmm;
+    if (kind == ElementKind::nmm)
+      continue;
+    // The block's polygon: its counter-clockwise loop is the outer boundary, the others holes.
+    Polygon polygon;
+    std::vector<Loop> holes;
+    for (const int l : block.loops) {
+      const Loop& loop = model.loops[at(l)].vertices;
+      if (signed_area(loop) > 0.0 && polygon.outer.empty())
+        polygon.outer = loop;
+      else
+        polygon.holes.push_back(loop);
+    }
+    const ElasticMaterial& m = model.materials[at(material)];
+    const Point2 somewhere = block.loops.empty()
+                                 ? Point2::Zero()
+                                 : model.loops[at(block.loops.front())].vertices.front();
+    const double block_area = polygon.outer.size() >= 3 ? area(polygon) : 0.0;
+    if (polygon.outer.size() < 3 || !(block_area > 0.0)) {
+      throw InputError("a block of the " + std::string(kind == ElementKind::dda ? "dda" : "vem") +
+                       " material \"" + m.name + "\" near " + point_text(somewhere, 6) + " has " +
+                       std::to_string(polygon.outer.size()) + " vertices and an area of " +
+                       std::to_string(block_area) +
+                       " m² after cutting: a block needs three vertices and an area; check the "
+                       "joints that cut it out (two joints nearly on top of each other leave "
+                       "such slivers)");
+    }
+    ModelElement element;
+    element.kind = kind;
+    element.material = material;
+    element.block = static_cast<int>(b);
+    element.area = block_area;
+    element.polygons = {polygon};
+    ModelCover cover;
+    cover.kind = kind;
+    cover.block = static_cast<int>(b);
+    if (kind == ElementKind::dda) {
+      Moments2 moments(1, polygon.outer.front());
+      moments += polygon_moments(polygon, 1, polygon.outer.front());
+      cover.position = moments.centroid();
+      element.covers.push_back(model.n_covers());
+      model.covers.push_back(cover);
+    } else {
+      auto add_vertices = [&](const Loop& loop) {
+        for (const Point2& p : loop) {
+          cover.position = p;
+          element.covers.push_back(model.n_covers());
+          model.covers.push_back(cover);
+        }
+      };
+      add_vertices(polygon.outer);
+      for (const Loop& hole : polygon.holes)
+        add_vertices(hole);
+    }
+    element.stress.coefficients.col(0) = m.initial_stress;
+    element_of_block[b] = model.n_elements();
+    model.elements.push_back(std::move(element));
+    model.blocks[b].elements.push_back(element_of_block[b]);
+  }
+  for (int e = 0; e < model.n_elements(); ++e) {
+    if (model.elements[at(e)].kind != ElementKind::nmm)
+      model.elements[at(e)].stress.origin = model.shape(e).origin();
+  }
+  for (BoundaryLoop& loop : model.loops) {
+    const int e = element_of_block[at(loop.block)];
+    if (e < 0)
+      continue;
+    for (BoundaryEdge& edge : loop.edges)
+      edge.element = e;
+  }
+  for (auto& pieces : model.curve_pieces) {
+    for (CurvePiece& piece : pieces) {
+      if (piece.left_block >= 0 && element_of_block[at(piece.left_block)] >= 0)
+        piece.left_element = element_of_block[at(piece.left_block)];
+      if (piece.right_block >= 0 && element_of_block[at(piece.right_block)] >= 0)
+        piece.right_element = element_of_block[at(piece.right_block)];
+    }
+  }
+}
+
+} // namespace
 
 Model make_model(const CoverSystem& cover_system,
                  const MathMesh& math,
@@ -427,7 +583,7 @@ Model make_model(const CoverSystem& cover_system,
     element.triangle = e.triangle;
     element.material = e.material;
     element.block = e.block;
-    element.covers = e.covers;
+    element.covers.assign(e.covers.begin(), e.covers.end());
     element.polygons = e.polygons;
     element.area = e.area;
     NMM_ASSERT(e.material >= 0 && at(e.material) < model.materials.size(),
@@ -442,6 +598,8 @@ Model make_model(const CoverSystem& cover_system,
   model.blocks = cover_system.blocks;
   model.loops = cover_system.loops;
   model.curve_pieces = cover_system.curve_pieces;
+  add_block_elements(model, options.region_kinds);
+  model.number_dofs();
   return model;
 }
 

@@ -4,6 +4,7 @@
 // material (Shi 1997, chapter 8.1: what is transferred from one step to the next).
 #pragma once
 
+#include "manifold/element.hpp"
 #include "manifold/linear_constraint.hpp"
 #include "manifold/material.hpp"
 #include "manifold/nmm_element.hpp"
@@ -13,29 +14,44 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace nmm {
 
-/// A physical cover of the model.
+/// A physical cover of the model: an NMM cover, a DDA block or a vertex of a VEM block.
 struct ModelCover {
+  ElementKind kind = ElementKind::nmm;
+  /// The math node (NMM), -1 for the covers of blocks.
   int node = -1;
   int block = -1;
   /// See Cover::extension_element: -1 for a cover with unknowns of its own.
   int extension_element = -1;
-  /// Current position of the cover's math node: the vertex of the triangle of every element
-  /// of this cover, and the origin of its order-1 cover function.
+  /// Current position: the cover's math node (the vertex of the triangle of every element of
+  /// this cover, and the origin of its order-1 cover function), the centroid of a DDA block,
+  /// the vertex of a VEM block.
   Point2 position = Point2::Zero();
+  /// The cover's raw unknowns are first_dof .. first_dof + n_dofs - 1: 2 (order 0) or 6
+  /// (order 1) for NMM covers, 6 for a DDA block (u0, v0, r0, ex, ey, gxy), 2 for a VEM
+  /// vertex. The first two are always the displacement of the cover's position.
+  int first_dof = 0;
+  int n_dofs = 0;
 };
 
-/// A manifold element of the model.
+/// An element of the model: a manifold element, a DDA block or a VEM block.
 struct ModelElement {
+  ElementKind kind = ElementKind::nmm;
+  /// The math triangle (NMM), -1 for blocks.
   int triangle = -1;
   int material = -1;
   int block = -1;
-  std::array<int, 3> covers{-1, -1, -1};
+  /// The covers: three in the triangle's node order (NMM), the block's one (DDA), the
+  /// block's vertices in the order of its polygon's loops (VEM).
+  std::vector<int> covers;
+  /// Raw unknowns of the element, in the local order of its shape.
+  std::vector<int> dofs;
   /// Current integration domain.
   std::vector<Polygon> polygons;
   /// Accumulated stress (the initial stress of the next step, Shi eq. 2.9-2.10), a linear
@@ -69,20 +85,31 @@ public:
 
   [[nodiscard]] int n_covers() const noexcept { return static_cast<int>(covers.size()); }
   [[nodiscard]] int n_elements() const noexcept { return static_cast<int>(elements.size()); }
-  /// Unknowns per cover.
+  /// Unknowns of each NMM cover.
   [[nodiscard]] int dofs_per_cover() const noexcept { return cover_dofs(order); }
-  /// Raw unknowns: dofs_per_cover() for every cover, cover by cover.
-  [[nodiscard]] int n_dofs() const noexcept { return n_covers() * dofs_per_cover(); }
-  /// Raw unknown j (0 .. dofs_per_cover() - 1) of cover c.
-  [[nodiscard]] int dof(int cover, int j) const noexcept { return cover * dofs_per_cover() + j; }
+  /// Raw unknowns: those of every cover, cover by cover.
+  [[nodiscard]] int n_dofs() const noexcept { return n_dofs_; }
+  /// Raw unknown j (0 .. covers[cover].n_dofs - 1) of a cover.
+  [[nodiscard]] int dof(int cover, int j) const noexcept {
+    return covers[static_cast<std::size_t>(cover)].first_dof + j;
+  }
+  /// The cover owning raw unknown @p dof.
+  [[nodiscard]] int cover_of_dof(int dof) const;
+  /// Gives every cover its first_dof and every element its dofs (after covers were added).
+  void number_dofs();
 
-  /// The element's triangle: the positions of its three covers.
+  /// The NMM element's triangle: the positions of its three covers.
   [[nodiscard]] std::array<Point2, 3> triangle(int element) const;
-  [[nodiscard]] NmmShape shape(int element) const;
+  /// The element's kinematics at the current geometry (element.hpp).
+  [[nodiscard]] ElementShape shape(int element) const;
+  /// The NMM element's shape. @pre elements[element].kind == ElementKind::nmm.
+  [[nodiscard]] NmmShape nmm_shape(int element) const;
   /// Raw unknowns of the element, in the local order of its shape.
-  [[nodiscard]] ElementDofs element_dofs(int element) const;
+  [[nodiscard]] std::span<const int> element_dofs(int element) const {
+    return elements[static_cast<std::size_t>(element)].dofs;
+  }
   /// The element's local unknowns taken from a raw vector.
-  [[nodiscard]] ElementVector element_values(int element, const Eigen::VectorXd& raw) const;
+  [[nodiscard]] Eigen::VectorXd element_values(int element, const Eigen::VectorXd& raw) const;
   /// Displacement at @p x of the element's field for the raw unknowns @p raw.
   [[nodiscard]] Point2 displacement(int element, const Point2& x, const Eigen::VectorXd& raw) const;
   /// Material of an element.
@@ -115,6 +142,18 @@ public:
   /// Moves covers, element polygons, loops, curve pieces and @p points with the step
   /// displacement (Shi 1997, chapter 8.1: the geometry of the next step).
   void move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points);
+
+  /// The largest displacement of a cover's position or a block's vertex in @p raw (m): what
+  /// the step control limits (Shi 1997, chapter 8.5).
+  [[nodiscard]] double largest_displacement(const Eigen::VectorXd& raw) const;
+
+  /// Sets the unknowns of @p cover in @p raw to the rigid motion v(x) = v0 + omega J (x - c)
+  /// (a velocity or a displacement field; J turns by 90 degrees).
+  void set_rigid_motion(
+      int cover, const Point2& v0, double omega, const Point2& c, Eigen::VectorXd& raw) const;
+
+private:
+  int n_dofs_ = 0;
 };
 
 /// Options of make_model().
@@ -122,10 +161,16 @@ struct ModelOptions {
   int order = 0;
   /// Length scaling of order-1 cover functions; 0: the mean edge of the math mesh.
   double scale = 0.0;
+  /// Kind of every material region (index = region): the blocks of `dda` and `vem` regions
+  /// (CoverMesherOptions::block_regions) become special covers. Empty: every region NMM.
+  std::vector<ElementKind> region_kinds;
 };
 
-/// Builds the model of the NMM regions of a cover system.
+/// Builds the model of a cover system: NMM elements on the covers of NMM regions, one DDA or
+/// VEM element per block of the special regions (their covers after the NMM covers).
 /// @param materials  one per region of the physical mesh (index = region).
+/// @throws InputError for a block that cannot be an element (fewer than three vertices or
+///         no area), naming its material and a point of it.
 [[nodiscard]] Model make_model(const CoverSystem& covers,
                                const MathMesh& math,
                                std::vector<ElasticMaterial> materials,

@@ -88,7 +88,7 @@ singular_message(const Model& model, const DofMap& map, long column, SolveStatus
   for (int d = 0; d < model.n_dofs(); ++d) {
     if (map.reduced(d) != column)
       continue;
-    const ModelCover& cover = model.covers[at(d / model.dofs_per_cover())];
+    const ModelCover& cover = model.covers[at(model.cover_of_dof(d))];
     int material = -1;
     for (const ModelElement& e : model.elements) {
       if (e.block == cover.block)
@@ -146,9 +146,9 @@ struct TimeStepper::Impl {
   CholmodSolver solver;
   SparsityPattern pattern;
   std::unique_ptr<Assembler> stiffness;
-  /// Scalar consistent mass of every element (n x n each, times density and thickness, one
-  /// after the other), kept from the assembly for the kinetic energy of the new velocities.
-  std::vector<double> element_mass;
+  /// Consistent mass of every element (times density and thickness), kept from the assembly
+  /// for the kinetic energy of the new velocities.
+  std::vector<ElementMass> element_mass;
   /// Kinetic energy at the first dynamic step plus the work of the loads in the initial
   /// equilibrium (stored in the springs, released later), J: with load_work, the most
   /// kinetic energy the run can have (the energy check).
@@ -247,16 +247,9 @@ void TimeStepper::set_rigid_velocities(const std::vector<Point2>& block_velocity
   }
   velocity_.setZero();
   for (int c = 0; c < model_.n_covers(); ++c) {
-    const ModelCover& cover = model_.covers[at(c)];
-    const Point2 v0 = block_velocity[at(cover.block)];
-    const double omega = block_angular_velocity[at(cover.block)];
-    const Point2 r = cover.position - centre[at(cover.block)];
-    velocity_(model_.dof(c, 0)) = v0.x() - omega * r.y();
-    velocity_(model_.dof(c, 1)) = v0.y() + omega * r.x();
-    if (model_.order > 0) {
-      velocity_(model_.dof(c, 3)) = omega * model_.scale;  // dv/dx L
-      velocity_(model_.dof(c, 4)) = -omega * model_.scale; // du/dy L
-    }
+    const int b = model_.covers[at(c)].block;
+    model_.set_rigid_motion(c, block_velocity[at(b)], block_angular_velocity[at(b)], centre[at(b)],
+                            velocity_);
   }
 }
 
@@ -280,19 +273,8 @@ double TimeStepper::kinetic_energy(const Eigen::VectorXd& velocity) const {
   if (impl_->element_mass.empty())
     return 0.0;
   double kinetic = 0.0;
-  const int n = 3 * cover_basis_size(model_.order);
-  for (int e = 0; e < model_.n_elements(); ++e) {
-    const Eigen::Map<const Eigen::MatrixXd> mass(
-        impl_->element_mass.data() + static_cast<std::ptrdiff_t>(e) * n * n, n, n);
-    const ElementDofs dofs = model_.element_dofs(e);
-    ShapeVector u(n);
-    ShapeVector v(n);
-    for (int i = 0; i < n; ++i) {
-      u(i) = velocity(dofs(2 * i));
-      v(i) = velocity(dofs(2 * i + 1));
-    }
-    kinetic += 0.5 * (u.dot(mass * u) + v.dot(mass * v));
-  }
+  for (int e = 0; e < model_.n_elements(); ++e)
+    kinetic += impl_->element_mass[at(e)].energy(model_.element_values(e, velocity));
   return kinetic;
 }
 
@@ -369,8 +351,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     std::vector<Reduction> transforms;
     for (int e = 0; e < model_.n_elements(); ++e) {
       Reduction r;
-      const ElementDofs dofs = model_.element_dofs(e);
-      if (!reduce(map, {dofs.data(), static_cast<std::size_t>(dofs.size())}, flat, r)) {
+      if (!reduce(map, model_.element_dofs(e), flat, r)) {
         transform_of[at(e)] = static_cast<int>(transforms.size());
         transforms.push_back(std::move(r));
       }
@@ -467,9 +448,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     // body forces and the initial-stress load.
     Eigen::VectorXd rhs_correction = Eigen::VectorXd::Zero(map.n_reduced());
     const double inertia = with_mass ? 2.0 / (dt * dt) : 0.0;
-    const int n_shapes = 3 * cover_basis_size(model_.order);
     if (with_mass)
-      impl_->element_mass.resize(model_.elements.size() * at(n_shapes * n_shapes));
+      impl_->element_mass.resize(model_.elements.size());
     auto scatter = [&](int plan, const auto& local, int transform) {
       if (transform < 0) {
         a.add(plan, local);
@@ -483,47 +463,39 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           rhs_correction(r.reduced[j]) -= correction(static_cast<Eigen::Index>(j));
       }
     };
+    // Workspaces: the same size element after element, so no allocation in the loop.
+    Eigen::MatrixXd local;
+    Eigen::VectorXd element_loads;
+    Eigen::VectorXd inertia_load;
     for (int e = 0; e < model_.n_elements(); ++e) {
       const ModelElement& element = model_.elements[at(e)];
       const ElasticMaterial& material = model_.material_of(e);
-      const NmmShape shape = model_.shape(e);
-      const NmmElementIntegrals integrals(shape, element.polygons);
-      const ElementDofs dofs = model_.element_dofs(e);
-      ElementMatrix local =
-          integrals.stiffness(elasticity_matrix(material), material.thickness_factor());
-      const ElementVector load = element_load(model_, e, integrals, scene_.body_loads, t1);
-      for (Eigen::Index i = 0; i < dofs.size(); ++i) {
-        f(dofs(i)) += load(i);
-        loads(dofs(i)) += load(i);
+      const ElementShape shape = model_.shape(e);
+      const ElementIntegrals integrals(shape, element.polygons);
+      const std::span<const int> dofs = model_.element_dofs(e);
+      integrals.stiffness(elasticity_matrix(material), material.thickness_factor(), local);
+      element_load(model_, e, integrals, scene_.body_loads, t1, element_loads);
+      for (std::size_t i = 0; i < dofs.size(); ++i) {
+        f(dofs[i]) += element_loads(static_cast<Eigen::Index>(i));
+        loads(dofs[i]) += element_loads(static_cast<Eigen::Index>(i));
       }
       if (with_mass) {
-        // Mass on u and v alike; inertia load 2 M v0 / dt (Shi eq. 2.22-2.23).
-        const ShapeMatrix mass =
-            integrals.scalar_mass(material.density * material.thickness_factor());
-        for (int i = 0; i < n_shapes; ++i) {
-          double fu = 0.0;
-          double fv = 0.0;
-          for (int j = 0; j < n_shapes; ++j) {
-            local(2 * i, 2 * j) += inertia * mass(i, j);
-            local(2 * i + 1, 2 * j + 1) += inertia * mass(i, j);
-            fu += mass(i, j) * velocity_(dofs(2 * j));
-            fv += mass(i, j) * velocity_(dofs(2 * j + 1));
-          }
-          f(dofs(2 * i)) += (2.0 / dt) * fu;
-          f(dofs(2 * i + 1)) += (2.0 / dt) * fv;
-        }
-        std::copy_n(mass.data(), n_shapes * n_shapes,
-                    impl_->element_mass.begin() +
-                        static_cast<std::ptrdiff_t>(e) * n_shapes * n_shapes);
+        // Inertia 2 M / dt² and its load 2 M v0 / dt (Shi eq. 2.22-2.23).
+        ElementMass& mass = impl_->element_mass[at(e)];
+        integrals.mass(material.density * material.thickness_factor(), mass);
+        mass.add_to(local, inertia);
+        inertia_load = mass.times(model_.element_values(e, velocity_));
+        for (std::size_t i = 0; i < dofs.size(); ++i)
+          f(dofs[i]) += (2.0 / dt) * inertia_load(static_cast<Eigen::Index>(i));
       }
       scatter(e, local, transform_of[at(e)]);
     }
     for (std::size_t s = 0; s < spring_of.size(); ++s) {
       const SupportPoint& support = scene_.supports[at(spring_of[s])];
       const SupportSpring spring = support_spring(model_, support, options_.spring_stiffness, t1);
-      const ElementDofs dofs = model_.element_dofs(support.point.element);
-      for (Eigen::Index i = 0; i < dofs.size(); ++i)
-        f(dofs(i)) += spring.load(i);
+      const std::span<const int> dofs = model_.element_dofs(support.point.element);
+      for (std::size_t i = 0; i < dofs.size(); ++i)
+        f(dofs[i]) += spring.load(static_cast<Eigen::Index>(i));
       scatter(static_cast<int>(model_.elements.size() + s), spring.stiffness,
               transform_of[at(support.point.element)]);
     }
@@ -621,9 +593,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
                            "); check the penalty and the time step");
     }
 
-    double largest = 0.0;
-    for (int c = 0; c < model_.n_covers(); ++c)
-      largest = std::max(largest, Point2(raw(model_.dof(c, 0)), raw(model_.dof(c, 1))).norm());
+    const double largest = model_.largest_displacement(raw);
     report.max_displacement = largest;
     if (largest > limit && dynamic) {
       if (!options_.time_step && cut < options_.max_step_cuts) {

@@ -131,6 +131,7 @@ struct Incline {
   double dt = 1e-3;
   double penalty_factor = 40.0;
   double young = 1.0e10;
+  ElementKind block_kind = ElementKind::nmm;
 
   struct Result {
     double distance = 0.0; ///< slid along the slope after 1 s
@@ -151,7 +152,7 @@ struct Incline {
     const ElasticMaterial rock = elastic(young, 0.25, 2500.0, PlaneCondition::strain);
     testing::Setup s = testing::make_setup(
         {ramp, block}, {line("slip", a, a + along), line("base", down, Point2(6, 6) + down)}, {0},
-        nullptr, 0.125, rock, 0);
+        nullptr, 0.125, rock, 0, {ElementKind::nmm, block_kind});
     Scene scene;
     scene.supports = curve_support_points(s.model, 1, true, true, SupportMethod::exact, "base");
     scene.body_loads.push_back({{0.0, -9.81}, {}});
@@ -198,6 +199,28 @@ TEST(Incline, BlockSlidesTheExactDistanceForEveryFrictionAngleAndTimeStep) {
                   phi, dt, r.distance, r.exact, 100.0 * error, r.max_penetration, r.steps, r.cuts);
       EXPECT_LT(error, 1e-3) << "phi " << phi << " dt " << dt;
       EXPECT_LT(r.max_penetration, 1e-6) << "phi " << phi << " dt " << dt;
+    }
+  }
+}
+
+TEST(Incline, DdaAndVemBlocksSlideTheExactDistanceOnAnNmmRamp) {
+  // The same block as a DDA block and as a VEM block on the NMM ramp (issue 6, mixed scenes):
+  // the same closed form and the same 0.1% bound as the NMM block above. The VEM-DDA paper's
+  // VEM shows 37% at its first step and 2.0% at phi = 40 degrees (its Figure 7b).
+  for (const ElementKind kind : {ElementKind::dda, ElementKind::vem}) {
+    for (const double phi : {15.0, 30.0, 40.0}) {
+      Incline incline;
+      incline.phi_degrees = phi;
+      incline.dt = 1e-2;
+      incline.block_kind = kind;
+      const Incline::Result r = incline.run();
+      const double error = std::abs(r.distance - r.exact) / r.exact;
+      std::printf("%s block on the incline, phi %4.1f dt 1e-2: slid %.6f m, exact %.6f m, error "
+                  "%.4f%%, max penetration %.2e m, %ld cuts\n",
+                  kind == ElementKind::dda ? "dda" : "vem", phi, r.distance, r.exact, 100.0 * error,
+                  r.max_penetration, r.cuts);
+      EXPECT_LT(error, 1e-3) << "phi " << phi;
+      EXPECT_LT(r.max_penetration, 1e-6) << "phi " << phi;
     }
   }
 }
@@ -438,82 +461,122 @@ TEST(Drop, BlockDroppedOnABaseNeitherSinksInNorGainsEnergy) {
   EXPECT_LT(worst_gain, 1e-9);
 }
 
-TEST(RotatingTriangle, PenetrationInTheEquationsIsThePenetrationOfTheMovedGeometry) {
-  // The VEM-DDA paper's rotating triangle (section 5.1, Table 1): a triangle on a foundation
-  // whose top does not move, a horizontal load at its apex, no gravity; it tips about its
-  // corner. The penetration each contact point had in the equations of a step must be the
-  // one measured in the moved geometry: the cover functions are linear in each element and
-  // the geometry moves by the same interpolation, so with a master edge that stays put the
-  // two are the same number (the paper's DDA with post-adjusted rotations differs by up to
-  // 100%). Every cover of the foundation is held (a support at its node), as the paper fixes
-  // all the foundation's vertices; the tolerance 1e-12 m is rounding of coordinates of order
-  // 1 m, against penetrations of 1e-9 to 1e-4 m.
-  const ElasticMaterial rock = elastic(20e9, 0.25, 2800.0, PlaneCondition::stress);
-  testing::Setup s =
-      testing::make_setup({testing::rectangle("foundation", -1.0, 0.0, 2.0, 1.0),
-                           {"triangle", {{{{0.0, 1.0}, {1.0, 1.0}, {0.5, 2.0}}, {}}}}},
-                          {line("seat", {0.0, 1.0}, {1.0, 1.0})}, {0}, nullptr, 0.25, rock, 0);
-  ASSERT_EQ(s.model.blocks.size(), 2U);
-  Scene scene;
-  for (const Point2& node : s.math.nodes) {
-    if (node.y() > 1.0 + 1e-12 || node.x() < -1.0 - 1e-12 || node.x() > 2.0 + 1e-12 ||
-        node.y() < -1e-12)
-      continue; // not a node of the foundation's covers
-    SupportPoint hold;
-    hold.point.position = Point2(node.x(), std::min(node.y(), 1.0 - 1e-9)); // the foundation side
-    hold.point.element = s.model.find_element(hold.point.position, 1e-9);
-    hold.start = hold.point.position;
-    hold.fix_x = hold.fix_y = true;
-    hold.origin = "foundation";
-    ASSERT_GE(hold.point.element, 0);
-    scene.supports.push_back(hold);
-  }
-  const Point2 apex(0.5, 1.99);
-  scene.point_loads.push_back({{s.model.find_element(apex, 1e-9), apex}, {1e4, 0.0}, {}});
-  StepperOptions options;
-  options.time_step = 1e-2;
-  ContactOptions contact;
-  contact.penalty = 100.0 * rock.young; // the paper's normal spring
-  contact.spring_length = s.model.scale;
-  std::vector<std::vector<JointStrength>> strengths;
-  std::vector<std::vector<bool>> bonds;
-  for (const BoundaryLoop& loop : s.model.loops) {
-    strengths.emplace_back(loop.edges.size(), JointStrength{30.0 * pi / 180.0, 0.0, 0.0});
-    bonds.emplace_back(loop.edges.size(), false);
-  }
-  TimeStepper stepper(s.model, scene, options,
-                      std::make_unique<ContactSystem>(contact, strengths, bonds));
-  double worst = 0.0;
-  double deepest = 0.0;
+/// The VEM-DDA paper's rotating triangle (section 5.1, Table 1): a triangle on a foundation
+/// whose top does not move, a horizontal load at its apex, no gravity; it tips about its
+/// corner. Returns the largest difference between the penetration each closed contact point
+/// had in the equations of a step and the one measured in the moved geometry, over 19 steps,
+/// for the contacts on an edge of the foundation (which stays put: the paper's point 7 -
+/// edge 14) and for those on an edge of the triangle. Every cover of the foundation is held
+/// (a support at its node), as the paper fixes all the foundation's vertices.
+struct RotatingTriangle {
+  ElementKind kind = ElementKind::nmm;
   int checked = 0;
-  for (int step = 0; step < 19; ++step) {
-    stepper.step(1e9);
-    // The moved boundary, numbered as the contact system numbers it (loop after loop).
-    const ContactBoundary moved = contact_boundary(s.model);
-    const std::vector<Point2>& position = moved.position;
-    const std::vector<int>& next = moved.next;
-    for (const ContactPoint& p : stepper.contact()->points()) {
-      if (p.mode == ContactMode::open)
-        continue;
-      const auto at = [](int i) { return static_cast<std::size_t>(i); };
-      const bool edge = (p.key & 1U) != 0;
-      const Point2 slave = edge ? Point2((1.0 - p.u) * position[at(p.slave_edge)] +
-                                         p.u * position[at(next[at(p.slave_edge)])])
-                                : position[at(p.slave_edge)];
-      const Point2& a = position[at(p.master)];
-      const Point2& b = position[at(next[at(p.master)])];
-      const double measured = (slave - a).dot(Point2((b - a).y(), -(b - a).x())) / (b - a).norm();
-      worst = std::max(worst, std::abs(measured - p.gap));
-      deepest = std::max(deepest, -p.gap);
-      ++checked;
+  double deepest = 0.0;
+  int vertices = 0;          ///< closed vertex (angle) contacts on the foundation's edges
+  double worst = 0.0;        ///< of those
+  double worst_points = 0.0; ///< of the points of edge-to-edge contacts there
+  double worst_moving = 0.0; ///< of contacts on the triangle's edges
+
+  void run() {
+    const ElasticMaterial rock = elastic(20e9, 0.25, 2800.0, PlaneCondition::stress);
+    testing::Setup s =
+        testing::make_setup({testing::rectangle("foundation", -1.0, 0.0, 2.0, 1.0),
+                             {"triangle", {{{{0.0, 1.0}, {1.0, 1.0}, {0.5, 2.0}}, {}}}}},
+                            {line("seat", {0.0, 1.0}, {1.0, 1.0})}, {0}, nullptr, 0.25, rock, 0,
+                            {ElementKind::nmm, kind});
+    ASSERT_EQ(s.model.blocks.size(), 2U);
+    Scene scene;
+    for (const Point2& node : s.math.nodes) {
+      if (node.y() > 1.0 + 1e-12 || node.x() < -1.0 - 1e-12 || node.x() > 2.0 + 1e-12 ||
+          node.y() < -1e-12)
+        continue; // not a node of the foundation's covers
+      SupportPoint hold;
+      hold.point.position = Point2(node.x(), std::min(node.y(), 1.0 - 1e-9)); // foundation side
+      hold.point.element = s.model.find_element(hold.point.position, 1e-9);
+      hold.start = hold.point.position;
+      hold.fix_x = hold.fix_y = true;
+      hold.origin = "foundation";
+      ASSERT_GE(hold.point.element, 0);
+      scene.supports.push_back(hold);
+    }
+    const Point2 apex(0.5, 1.99);
+    scene.point_loads.push_back({{s.model.find_element(apex, 1e-9), apex}, {1e4, 0.0}, {}});
+    StepperOptions options;
+    options.time_step = 1e-2;
+    ContactOptions contact;
+    contact.penalty = 100.0 * rock.young; // the paper's normal spring
+    contact.spring_length = s.model.scale;
+    std::vector<std::vector<JointStrength>> strengths;
+    std::vector<std::vector<bool>> bonds;
+    for (const BoundaryLoop& loop : s.model.loops) {
+      strengths.emplace_back(loop.edges.size(), JointStrength{30.0 * pi / 180.0, 0.0, 0.0});
+      bonds.emplace_back(loop.edges.size(), false);
+    }
+    const int foundation =
+        s.model.elements[static_cast<std::size_t>(s.model.find_element({-0.5, 0.5}, 1e-9))].block;
+    TimeStepper stepper(s.model, scene, options,
+                        std::make_unique<ContactSystem>(contact, strengths, bonds));
+    for (int step = 0; step < 19; ++step) {
+      stepper.step(1e9);
+      // The moved boundary, numbered as the contact system numbers it (loop after loop).
+      const ContactBoundary moved = contact_boundary(s.model);
+      const std::vector<Point2>& position = moved.position;
+      const std::vector<int>& next = moved.next;
+      for (const ContactPoint& p : stepper.contact()->points()) {
+        if (p.mode == ContactMode::open)
+          continue;
+        const auto at = [](int i) { return static_cast<std::size_t>(i); };
+        const bool edge = (p.key & 1U) != 0;
+        const Point2 slave = edge ? Point2((1.0 - p.u) * position[at(p.slave_edge)] +
+                                           p.u * position[at(next[at(p.slave_edge)])])
+                                  : position[at(p.slave_edge)];
+        const Point2& a = position[at(p.master)];
+        const Point2& b = position[at(next[at(p.master)])];
+        const double measured = (slave - a).dot(Point2((b - a).y(), -(b - a).x())) / (b - a).norm();
+        const bool fixed = moved.block[at(p.master)] == foundation;
+        double& difference = !fixed ? worst_moving : edge ? worst_points : worst;
+        difference = std::max(difference, std::abs(measured - p.gap));
+        vertices += fixed && !edge;
+        deepest = std::max(deepest, -p.gap);
+        ++checked;
+      }
     }
   }
-  std::printf("rotating triangle: %d contact points checked, deepest %.3e m, largest "
-              "difference %.3e m\n",
-              checked, deepest, worst);
-  EXPECT_GT(checked, 19);
-  EXPECT_GT(deepest, 1e-9);
-  EXPECT_LT(worst, 1e-12);
+};
+
+TEST(RotatingTriangle, PenetrationInTheEquationsIsThePenetrationOfTheMovedGeometry) {
+  // NMM covers and VEM vertices: the displacement is linear along every boundary edge and
+  // the geometry moves by the same interpolation, so with a master edge that stays put the
+  // two are the same number. NMM (the triangle's base is cut into short edges by the math
+  // mesh; the tipping corner is a vertex contact): tolerance 1e-12 m, rounding of
+  // coordinates of order 1 m against penetrations of 1e-9 to 1e-4 m. VEM (the base is one
+  // edge; the corner is the end of an edge-to-edge contact whose points follow the pressed
+  // part): measured 4e-6 of the deepest penetration, bound 1e-5 (the paper's Table 1 gives
+  // 6 digits and calls them identical); the residual is the contact points' placement, not
+  // the VEM block (left to investigate). A DDA block turns its geometry by its rotation
+  // exactly while its equations are linear in r0: there the two differ by the second-order
+  // term, as in the paper's Table 1 for DDA with post-adjustment (up to 100% there).
+  for (const ElementKind kind : {ElementKind::nmm, ElementKind::vem, ElementKind::dda}) {
+    RotatingTriangle t;
+    t.kind = kind;
+    t.run();
+    const char* name = kind == ElementKind::nmm ? "nmm" : kind == ElementKind::vem ? "vem" : "dda";
+    std::printf("rotating %s triangle: %d contact points checked, deepest %.3e m; largest "
+                "difference: %d vertex contacts on the foundation's edges %.3e m, edge-to-edge "
+                "points there %.3e m, contacts on the triangle's edges %.3e m\n",
+                name, t.checked, t.deepest, t.vertices, t.worst, t.worst_points, t.worst_moving);
+    EXPECT_GT(t.checked, 19) << name;
+    EXPECT_GT(t.deepest, 1e-9) << name;
+    const double worst = std::max(t.worst, t.worst_points);
+    if (kind == ElementKind::nmm) {
+      EXPECT_GT(t.vertices, 0);
+      EXPECT_LT(worst, 1e-12);
+    } else if (kind == ElementKind::vem) {
+      EXPECT_LT(worst, 1e-5 * t.deepest);
+    } else {
+      EXPECT_GT(worst, 1e-3 * t.deepest) << "the DDA block should show the rotation's term";
+    }
+  }
 }
 
 } // namespace

@@ -87,14 +87,16 @@ struct Setup {
   Model model;
 };
 
-/// As make_setup() below, with one material per region.
+/// As make_setup() below, with one material per region; @p kinds gives each region's kind
+/// (empty: all NMM; DDA and VEM regions become blocks).
 inline Setup make_setup(std::vector<MaterialRegion> regions,
                         std::vector<NamedCurve> curves,
                         std::vector<int> joints,
                         const MathMesh* math,
                         double size,
                         const std::vector<ElasticMaterial>& materials,
-                        int order) {
+                        int order,
+                        const std::vector<ElementKind>& kinds = {}) {
   Setup s;
   s.physical.source = "verification";
   s.physical.regions = std::move(regions);
@@ -102,9 +104,15 @@ inline Setup make_setup(std::vector<MaterialRegion> regions,
   validate_physical_mesh(s.physical);
   s.math =
       math != nullptr ? *math : make_regular_math_mesh(material_bounding_box(s.physical), size);
-  s.covers = build_cover_system(s.math, s.physical, joints);
+  CoverMesherOptions mesher;
+  for (std::size_t r = 0; r < kinds.size(); ++r) {
+    if (kinds[r] != ElementKind::nmm)
+      mesher.block_regions.push_back(static_cast<int>(r));
+  }
+  s.covers = build_cover_system(s.math, s.physical, joints, mesher);
   ModelOptions options;
   options.order = order;
+  options.region_kinds = kinds;
   s.model = make_model(s.covers, s.math, materials, options);
   return s;
 }
@@ -117,10 +125,11 @@ inline Setup make_setup(std::vector<MaterialRegion> regions,
                         const MathMesh* math,
                         double size,
                         const ElasticMaterial& material,
-                        int order) {
+                        int order,
+                        const std::vector<ElementKind>& kinds = {}) {
   const std::size_t n = regions.size();
   return make_setup(std::move(regions), std::move(curves), std::move(joints), math, size,
-                    std::vector<ElasticMaterial>(n, material), order);
+                    std::vector<ElasticMaterial>(n, material), order, kinds);
 }
 
 } // namespace nmm::testing

@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace nmm {
@@ -91,13 +92,20 @@ TEST_F(CaseRunner, RegionWithoutMaterialIsNamed) {
                        "add a [materials.clay] table"});
 }
 
-TEST_F(CaseRunner, DdaAndVemAreNotYetSupportedAtTheMaterialsLine) {
-  for (const char* model : {"dda", "vem"}) {
-    const std::string message =
-        error_of(replaced(plate_case, "density = 2000.0",
-                          std::string("model = \"") + model + "\"\ndensity = 2000.0"));
-    expect_all(message, {case_prefix(dir(), 6), std::string("model = \"") + model + "\"",
-                         "not yet supported", "use model = \"nmm\""});
+TEST_F(CaseRunner, OneWordMakesTheRegionADdaOrVemBlock) {
+  // model = "dda": the plate is one block with one cover of six unknowns; model = "vem": one
+  // element whose covers are its four corners (two unknowns each). Supports, loads and the
+  // monitor find the block's element.
+  for (const auto& [model, kind, dofs] :
+       {std::tuple{"dda", ElementKind::dda, 6}, std::tuple{"vem", ElementKind::vem, 8}}) {
+    const CaseAnalysis analysis(read_case_file(
+        case_file(replaced(plate_case, "density = 2000.0",
+                           std::string("model = \"") + model + "\"\ndensity = 2000.0"))));
+    const Model& m = analysis.model();
+    ASSERT_EQ(m.n_elements(), 1) << model;
+    EXPECT_EQ(m.elements[0].kind, kind) << model;
+    EXPECT_EQ(m.n_dofs(), dofs) << model;
+    EXPECT_NEAR(m.elements[0].area, 2.0, 1e-12) << model;
   }
 }
 

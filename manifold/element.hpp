@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: MIT
+// manifold/element.hpp — the one interface behind which the three kinds of element live
+// (DESIGN.md "special covers"): NMM elements (three covers, barycentric weights), DDA blocks
+// (one cover, weight 1) and VEM blocks (a cover per vertex, the element is the block).
+// Assembly, contact, supports and loads, output and step control see only this: the
+// element's unknowns, the displacement at a point, the strain and rotation, where a point
+// moves, and the element integrals. The kind is looked at here and nowhere else.
+#pragma once
+
+#include "manifold/dda_block.hpp"
+#include "manifold/nmm_element.hpp"
+#include "manifold/vem_block.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <span>
+#include <variant>
+
+namespace nmm {
+
+/// What kind of cover an element is built on (the `kind` cell array of the output).
+enum class ElementKind : std::uint8_t { nmm = 0, dda = 1, vem = 2 };
+
+/// (u, v)(x) = T(x) d_e for the element's local unknowns d_e.
+using PointInterpolation = Eigen::Matrix<double, 2, Eigen::Dynamic>;
+
+/// The kinematics of one element at the current geometry.
+class ElementShape {
+public:
+  explicit ElementShape(NmmShape shape) : shape_(std::move(shape)) {}
+  explicit ElementShape(DdaShape shape) : shape_(shape) {}
+  explicit ElementShape(VemShape shape) : shape_(std::move(shape)) {}
+
+  [[nodiscard]] ElementKind kind() const noexcept {
+    return static_cast<ElementKind>(shape_.index());
+  }
+  /// Number of local unknowns.
+  [[nodiscard]] int n_dofs() const;
+  /// The point about which strain and stress fields are held: the triangle's centroid
+  /// (NMM), the block's centroid (DDA), the mean of the vertices (VEM).
+  [[nodiscard]] Point2 origin() const;
+  [[nodiscard]] PointInterpolation interpolation_at(const Point2& x) const;
+  [[nodiscard]] Point2 displacement_at(const Point2& x, std::span<const double> d) const;
+  /// Where the material point at @p x goes with the step displacement @p d: x + T(x) d,
+  /// except for DDA blocks, which turn by their rotation exactly (dda_block.hpp).
+  [[nodiscard]] Point2 moved(const Point2& x, std::span<const double> d) const;
+  /// Strain field of @p d (constant for order 0, DDA and VEM; linear for order 1).
+  [[nodiscard]] LinearField3 strain(std::span<const double> d) const;
+  /// Rigid rotation of @p d at origin(): (dv/dx - du/dy) / 2.
+  [[nodiscard]] double rotation(std::span<const double> d) const;
+  /// The NMM shape, or null for a block.
+  [[nodiscard]] const NmmShape* nmm() const noexcept { return std::get_if<NmmShape>(&shape_); }
+
+private:
+  friend class ElementIntegrals;
+  std::variant<NmmShape, DdaShape, VemShape> shape_;
+};
+
+/// An element's mass matrix: NMM's acts on u and v alike (a scalar matrix on the shape
+/// functions, kept as such: a quarter of the memory); DDA's and VEM's couple u and v.
+struct ElementMass {
+  bool scalar = false;
+  Eigen::MatrixXd matrix;
+
+  /// local += factor M.
+  void add_to(Eigen::MatrixXd& local, double factor) const;
+  /// M v.
+  [[nodiscard]] Eigen::VectorXd times(const Eigen::VectorXd& v) const;
+  /// v^T M v / 2.
+  [[nodiscard]] double energy(const Eigen::VectorXd& v) const;
+};
+
+/// Area integrals of one element, exact by simplex integration, whichever its kind.
+class ElementIntegrals {
+public:
+  /// @param shape     must outlive this object.
+  /// @param polygons  the element's integration domain at the same geometry as @p shape.
+  ElementIntegrals(const ElementShape& shape, std::span<const Polygon> polygons);
+
+  [[nodiscard]] double area() const;
+  /// Stiffness times @p thickness, into @p out (resized; no allocation when it has the size).
+  void stiffness(const Eigen::Matrix3d& d, double thickness, Eigen::MatrixXd& out) const;
+  /// Mass times density and thickness, into @p out.
+  void mass(double density_thickness, ElementMass& out) const;
+  /// Body force of a constant force per volume, plus the initial-stress load of @p stress
+  /// when it is not zero, into @p out.
+  void loads(const Point2& force,
+             const LinearField3& stress,
+             double thickness,
+             Eigen::VectorXd& out) const;
+
+private:
+  std::variant<NmmElementIntegrals, DdaIntegrals, VemIntegrals> integrals_;
+};
+
+} // namespace nmm

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: MIT
+#include "manifold/vem_block.hpp"
+
+#include "manifold/dda_block.hpp"
+#include "mesh/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace nmm {
+
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+} // namespace
+
+VemShape::VemShape(std::span<const Polygon> polygons) {
+  auto add_loop = [&](const Loop& loop) {
+    const int first = n_vertices();
+    const int n = static_cast<int>(loop.size());
+    for (int k = 0; k < n; ++k) {
+      vertices_.push_back(loop[at(k)]);
+      next_.push_back(first + (k + 1) % n);
+    }
+  };
+  for (const Polygon& polygon : polygons) {
+    add_loop(polygon.outer);
+    for (const Loop& hole : polygon.holes)
+      add_loop(hole);
+  }
+  const int n = n_vertices();
+  NMM_ASSERT(n >= 3, "a VEM block needs at least three vertices");
+  for (const Point2& p : vertices_)
+    origin_ += p / static_cast<double>(n);
+  BoundingBox box;
+  for (const Point2& p : vertices_)
+    box.extend(p);
+  size_ = std::max(box.size().x(), box.size().y());
+  // q_i = (l_i n_i + l_{i+1} n_{i+1}) / 2 over the two edges at vertex i (eq. 34): the
+  // boundary integral of u n with u linear on each edge gives sum_i q_i u_i. With the
+  // material on the left of every edge a -> b, l n = (b.y - a.y, a.x - b.x). The area
+  // comes from the same edges (about the origin, for accuracy far from 0).
+  std::vector<Point2> q(at(n), Point2::Zero());
+  double twice_area = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Point2 a = vertices_[at(i)] - origin_;
+    const Point2 b = vertices_[at(next_[at(i)])] - origin_;
+    const Point2 ln(b.y() - a.y(), a.x() - b.x());
+    q[at(i)] += 0.5 * ln;
+    q[at(next_[at(i)])] += 0.5 * ln;
+    twice_area += a.x() * b.y() - a.y() * b.x();
+  }
+  area_ = 0.5 * twice_area;
+  projector_ = Eigen::MatrixXd::Zero(6, 2 * n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Index u = 2 * i;
+    const Eigen::Index v = 2 * i + 1;
+    const Point2 g = q[at(i)] / area_;
+    projector_(0, u) = 1.0 / n;
+    projector_(1, v) = 1.0 / n;
+    projector_(2, u) = -0.5 * g.y();
+    projector_(2, v) = 0.5 * g.x();
+    projector_(3, u) = g.x();
+    projector_(4, v) = g.y();
+    projector_(5, u) = g.y();
+    projector_(5, v) = g.x();
+  }
+}
+
+Eigen::Matrix<double, 2, Eigen::Dynamic> VemShape::interpolation_at(const Point2& x) const {
+  Eigen::Matrix<double, 2, Eigen::Dynamic> t =
+      Eigen::Matrix<double, 2, Eigen::Dynamic>::Zero(2, n_dofs());
+  // The nearest edge.
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  double best_s = 0.0;
+  for (int i = 0; i < n_vertices(); ++i) {
+    const Point2& a = vertices_[at(i)];
+    const Point2& b = vertices_[at(next_[at(i)])];
+    const Point2 ab = b - a;
+    const double length2 = ab.squaredNorm();
+    const double s = length2 > 0.0 ? std::clamp((x - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+    const double distance = (x - (a + s * ab)).norm();
+    if (distance < best_distance) {
+      best_distance = distance;
+      best = i;
+      best_s = s;
+    }
+  }
+  if (best >= 0 && best_distance <= 1e-9 * size_) {
+    const int j = next_[at(best)];
+    t(0, 2 * best) = 1.0 - best_s;
+    t(1, 2 * best + 1) = 1.0 - best_s;
+    t(0, 2 * j) += best_s;
+    t(1, 2 * j + 1) += best_s;
+    return t;
+  }
+  return dda_basis(origin_, x) * projector_;
+}
+
+Point2 VemShape::displacement_at(const Point2& x, std::span<const double> d) const {
+  const Eigen::Map<const Eigen::VectorXd> values(d.data(), n_dofs());
+  return interpolation_at(x) * values;
+}
+
+LinearField3 VemShape::strain(std::span<const double> d) const {
+  const Eigen::Map<const Eigen::VectorXd> values(d.data(), n_dofs());
+  LinearField3 field;
+  field.origin = origin_;
+  field.coefficients.col(0) = projector_.bottomRows<3>() * values;
+  return field;
+}
+
+double VemShape::rotation(std::span<const double> d) const {
+  const Eigen::Map<const Eigen::VectorXd> values(d.data(), n_dofs());
+  return projector_.row(2).dot(values);
+}
+
+VemIntegrals::VemIntegrals(const VemShape& shape, std::span<const Polygon> polygons)
+    : shape_(shape) {
+  const int n = shape.n_vertices();
+  // P_u (eq. 50): Pi_P u at the vertices, T*(x_i) H.
+  Eigen::MatrixXd pu(2 * n, 2 * n);
+  for (int i = 0; i < n; ++i)
+    pu.middleRows(2 * i, 2) =
+        dda_basis(shape.origin(), shape.vertices()[at(i)]) * shape.projector();
+  const Eigen::MatrixXd residual = Eigen::MatrixXd::Identity(2 * n, 2 * n) - pu;
+  stabilisation_ = residual.transpose() * residual;
+  projection_trace_ = pu.squaredNorm(); // trace(P_u^T P_u)
+  const DdaMoments m = dda_moments(shape.origin(), polygons);
+  basis_mass_ = m.mass;
+  basis_mean_ = m.mean;
+  first_ = Eigen::Vector2d(m.mean(0, 3), m.mean(1, 4));
+}
+
+Eigen::MatrixXd VemIntegrals::stiffness(const Eigen::Matrix3d& d, double thickness) const {
+  const Eigen::MatrixXd pc = shape_.projector().bottomRows<3>();
+  const Eigen::MatrixXd consistency = (shape_.area() * thickness) * pc.transpose() * d * pc;
+  const double eta = consistency.trace() / projection_trace_;
+  return consistency + eta * stabilisation_;
+}
+
+Eigen::MatrixXd VemIntegrals::mass(double density_thickness) const {
+  const Eigen::MatrixXd& h = shape_.projector();
+  const Eigen::MatrixXd consistency = density_thickness * h.transpose() * basis_mass_ * h;
+  const double eta = consistency.trace() / projection_trace_;
+  return consistency + eta * stabilisation_;
+}
+
+Eigen::VectorXd VemIntegrals::body_force(const Point2& force, double thickness) const {
+  return thickness * shape_.projector().transpose() * (basis_mean_.transpose() * force);
+}
+
+Eigen::VectorXd VemIntegrals::initial_stress_load(const LinearField3& stress,
+                                                  double thickness) const {
+  const Eigen::Vector3d integral = stress.at(shape_.origin()) * shape_.area() +
+                                   stress.coefficients.col(1) * first_.x() +
+                                   stress.coefficients.col(2) * first_.y();
+  return -thickness * shape_.projector().bottomRows<3>().transpose() * integral;
+}
+
+} // namespace nmm

@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+// manifold/vem_block.hpp — a VEM block (the VEM-DDA paper, Luo et al. 2021, sections 3-4):
+// every vertex of the block is a cover with its own displacement (2 unknowns), the element is
+// the whole block; the displacement is linear along each edge and virtual inside. Matrices
+// come from the projection Pi_P on the linear fields (eq. 32-41) plus the trace-scaled
+// stabilisation (eq. 46-58); body force and initial stress through the projection (eq.
+// 60-63). Works for any simple polygon with holes, concave ones included (only boundary
+// integrals and moments of the polygon are used).
+#pragma once
+
+#include "manifold/nmm_element.hpp"
+#include "mesh/geometry.hpp"
+
+#include <Eigen/Core>
+
+#include <span>
+#include <vector>
+
+namespace nmm {
+
+/// Kinematics of a VEM block at its current vertices.
+class VemShape {
+public:
+  /// @param polygons  the block: its outer loop counter-clockwise, holes clockwise. Its
+  ///                  vertices in that order (outer, then each hole) are the element's
+  ///                  covers; local unknowns 2 i and 2 i + 1 are u and v of vertex i.
+  explicit VemShape(std::span<const Polygon> polygons);
+
+  [[nodiscard]] int n_vertices() const noexcept { return static_cast<int>(vertices_.size()); }
+  [[nodiscard]] int n_dofs() const noexcept { return 2 * n_vertices(); }
+  [[nodiscard]] const std::vector<Point2>& vertices() const noexcept { return vertices_; }
+  /// x*: the mean of the vertices, origin of the projection (eq. 32).
+  [[nodiscard]] const Point2& origin() const noexcept { return origin_; }
+  /// Area S of the block.
+  [[nodiscard]] double area() const noexcept { return area_; }
+  /// H (eq. 38): the DDA unknowns (u*, v*, r0, ex, ey, gxy) of Pi_P u from the vertex values.
+  [[nodiscard]] const Eigen::MatrixXd& projector() const noexcept { return projector_; }
+
+  /// The interpolation at @p x: on the boundary (within 1e-9 of the block's size of an edge)
+  /// the linear interpolation between the edge's two vertices, which is exact; inside, the
+  /// projection T*(x) H (the virtual field itself is not known there).
+  [[nodiscard]] Eigen::Matrix<double, 2, Eigen::Dynamic> interpolation_at(const Point2& x) const;
+  [[nodiscard]] Point2 displacement_at(const Point2& x, std::span<const double> d) const;
+  /// The constant strain of Pi_P u (eq. 40): P_c d.
+  [[nodiscard]] LinearField3 strain(std::span<const double> d) const;
+  /// The rotation r0 of Pi_P u.
+  [[nodiscard]] double rotation(std::span<const double> d) const;
+
+private:
+  std::vector<Point2> vertices_;
+  /// Next vertex along its loop, for each vertex.
+  std::vector<int> next_;
+  Point2 origin_ = Point2::Zero();
+  double area_ = 0.0;
+  double size_ = 0.0;
+  Eigen::MatrixXd projector_; ///< 6 x 2n
+};
+
+/// Element integrals of a VEM block.
+class VemIntegrals {
+public:
+  VemIntegrals(const VemShape& shape, std::span<const Polygon> polygons);
+  [[nodiscard]] double area() const noexcept { return shape_.area(); }
+  /// S P_c^T D P_c + eta_E (I - P_u)^T (I - P_u), eta_E equating the traces (eq. 48-53).
+  [[nodiscard]] Eigen::MatrixXd stiffness(const Eigen::Matrix3d& d, double thickness) const;
+  /// rho H^T P_m H + eta_M (I - P_u)^T (I - P_u) (eq. 54-57, without 2/dt²).
+  [[nodiscard]] Eigen::MatrixXd mass(double density_thickness) const;
+  /// H^T ∫ T*^T b (eq. 61-63).
+  [[nodiscard]] Eigen::VectorXd body_force(const Point2& force, double thickness) const;
+  /// -S P_c^T sigma0 (eq. 60), sigma0 the mean of the stress field over the block.
+  [[nodiscard]] Eigen::VectorXd initial_stress_load(const LinearField3& stress,
+                                                    double thickness) const;
+
+private:
+  const VemShape& shape_;
+  /// (I - P_u)^T (I - P_u) and trace(P_u^T P_u) (eq. 49-50).
+  Eigen::MatrixXd stabilisation_;
+  double projection_trace_ = 0.0;
+  Eigen::Matrix<double, 6, 6> basis_mass_; ///< P_m (eq. 56)
+  Eigen::Matrix<double, 2, 6> basis_mean_; ///< ∫ T*
+  Eigen::Vector2d first_ = Eigen::Vector2d::Zero();
+};
+
+} // namespace nmm
