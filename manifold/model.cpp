@@ -469,7 +469,6 @@ void add_block_elements(Model& model, const std::vector<ElementKind>& region_kin
       continue;
     // The block's polygon: its counter-clockwise loop is the outer boundary, the others holes.
     Polygon polygon;
-    std::vector<Loop> holes;
     for (const int l : block.loops) {
       const Loop& loop = model.loops[at(l)].vertices;
       if (signed_area(loop) > 0.0 && polygon.outer.empty())
