@@ -485,12 +485,14 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
     return static_cast<Eigen::Index>(std::find(k.dofs.begin(), k.dofs.end(), raw) - k.dofs.begin());
   };
   // Adds T_element(x)^T c to h.
+  PointInterpolation t;
   auto add = [&](Eigen::VectorXd& h, int element, std::span<const int> dofs, const Point2& x,
                  const Point2& c) {
-    const PointInterpolation t = model.shape(element).interpolation_at(x);
-    const Eigen::VectorXd contribution = t.transpose() * c;
-    for (std::size_t i = 0; i < dofs.size(); ++i)
-      h(local(dofs[i])) += contribution(static_cast<Eigen::Index>(i));
+    model.shape(element).interpolation_at(x, t);
+    for (std::size_t i = 0; i < dofs.size(); ++i) {
+      const auto j = static_cast<Eigen::Index>(i);
+      h(local(dofs[i])) += t(0, j) * c.x() + t(1, j) * c.y();
+    }
   };
   const Point2& a = boundary_.position[at(master)];
   const Point2& b = boundary_.position[at(boundary_.next[at(master)])];

@@ -24,8 +24,13 @@ Point2 ElementShape::origin() const {
 }
 
 PointInterpolation ElementShape::interpolation_at(const Point2& x) const {
-  return std::visit([&](const auto& s) { return PointInterpolation(s.interpolation_at(x)); },
-                    shape_);
+  PointInterpolation t;
+  interpolation_at(x, t);
+  return t;
+}
+
+void ElementShape::interpolation_at(const Point2& x, PointInterpolation& out) const {
+  std::visit([&](const auto& s) { out = s.interpolation_at(x); }, shape_);
 }
 
 Point2 ElementShape::displacement_at(const Point2& x, std::span<const double> d) const {
@@ -72,20 +77,37 @@ void ElementMass::add_to(Eigen::MatrixXd& local, double factor) const {
   }
 }
 
-Eigen::VectorXd ElementMass::times(const Eigen::VectorXd& v) const {
-  if (!scalar)
-    return matrix * v;
+void ElementMass::times(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
+  out.resize(v.size());
+  if (!scalar) {
+    out.noalias() = matrix * v;
+    return;
+  }
+  // The scalar matrix on u (even entries) and on v (odd entries) alike.
   const Eigen::Index n = matrix.rows();
-  const Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>> by_component(
-      v.data(), 2, n, Eigen::OuterStride<>(2));
-  Eigen::VectorXd result(2 * n);
-  Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>> out(result.data(), 2, n,
-                                                           Eigen::OuterStride<>(2));
-  out.noalias() = by_component * matrix.transpose();
-  return result;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double u_sum = 0.0;
+    double v_sum = 0.0;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      u_sum += matrix(i, j) * v(2 * j);
+      v_sum += matrix(i, j) * v(2 * j + 1);
+    }
+    out(2 * i) = u_sum;
+    out(2 * i + 1) = v_sum;
+  }
 }
 
-double ElementMass::energy(const Eigen::VectorXd& v) const { return 0.5 * v.dot(times(v)); }
+double ElementMass::energy(const Eigen::VectorXd& v) const {
+  if (!scalar)
+    return 0.5 * v.dot(matrix * v);
+  double sum = 0.0;
+  const Eigen::Index n = matrix.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j)
+      sum += matrix(i, j) * (v(2 * i) * v(2 * j) + v(2 * i + 1) * v(2 * j + 1));
+  }
+  return 0.5 * sum;
+}
 
 ElementIntegrals::ElementIntegrals(const ElementShape& shape, std::span<const Polygon> polygons)
     : integrals_(std::visit(

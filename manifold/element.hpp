@@ -41,6 +41,8 @@ public:
   /// (NMM), the block's centroid (DDA), the mean of the vertices (VEM).
   [[nodiscard]] Point2 origin() const;
   [[nodiscard]] PointInterpolation interpolation_at(const Point2& x) const;
+  /// The same into @p out (no allocation when it has the size: contact loops).
+  void interpolation_at(const Point2& x, PointInterpolation& out) const;
   [[nodiscard]] Point2 displacement_at(const Point2& x, std::span<const double> d) const;
   /// Where the material point at @p x goes with the step displacement @p d: x + T(x) d,
   /// except for DDA blocks, which turn by their rotation exactly (dda_block.hpp).
@@ -65,8 +67,8 @@ struct ElementMass {
 
   /// local += factor M.
   void add_to(Eigen::MatrixXd& local, double factor) const;
-  /// M v.
-  [[nodiscard]] Eigen::VectorXd times(const Eigen::VectorXd& v) const;
+  /// M v into @p out.
+  void times(const Eigen::VectorXd& v, Eigen::VectorXd& out) const;
   /// v^T M v / 2.
   [[nodiscard]] double energy(const Eigen::VectorXd& v) const;
 };

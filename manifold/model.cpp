@@ -118,11 +118,30 @@ void Model::number_dofs() {
 }
 
 Eigen::VectorXd Model::element_values(int element, const Eigen::VectorXd& raw) const {
-  const std::span<const int> dofs = element_dofs(element);
-  Eigen::VectorXd values(static_cast<Eigen::Index>(dofs.size()));
-  for (std::size_t i = 0; i < dofs.size(); ++i)
-    values(static_cast<Eigen::Index>(i)) = raw(dofs[i]);
+  Eigen::VectorXd values;
+  element_values(element, raw, values);
   return values;
+}
+
+void Model::element_values(int element, const Eigen::VectorXd& raw, Eigen::VectorXd& out) const {
+  const std::span<const int> dofs = element_dofs(element);
+  out.resize(static_cast<Eigen::Index>(dofs.size()));
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    out(static_cast<Eigen::Index>(i)) = raw(dofs[i]);
+}
+
+Point2 Model::element_origin(int element) const {
+  const ModelElement& e = elements[at(element)];
+  switch (e.kind) {
+  case ElementKind::dda:
+    return covers[at(e.covers.front())].position;
+  case ElementKind::vem:
+    return shape(element).origin();
+  case ElementKind::nmm:
+    break;
+  }
+  const auto t = triangle(element);
+  return (t[0] + t[1] + t[2]) / 3.0;
 }
 
 Point2 Model::displacement(int element, const Point2& x, const Eigen::VectorXd& raw) const {
@@ -338,10 +357,11 @@ LinearField3 rotated(const LinearField3& field, double omega) {
 } // namespace
 
 void Model::accumulate_stress(const Eigen::VectorXd& raw) {
+  Eigen::VectorXd values;
   for (int e = 0; e < n_elements(); ++e) {
     ModelElement& element = elements[at(e)];
     const ElementShape s = shape(e);
-    const Eigen::VectorXd values = element_values(e, raw);
+    element_values(e, raw, values);
     const std::span<const double> d(values.data(), static_cast<std::size_t>(values.size()));
     const LinearField3 strain = s.strain(d);
     LinearField3 stress = rotated(element.stress.about(s.origin()), s.rotation(d));
@@ -361,7 +381,7 @@ void Model::move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points)
     if (e != cached) {
       cached = e;
       cached_shape.emplace(shape(e));
-      cached_values = element_values(e, raw);
+      element_values(e, raw, cached_values);
     }
     return cached_shape->moved(
         x, {cached_values.data(), static_cast<std::size_t>(cached_values.size())});
@@ -408,7 +428,7 @@ void Model::move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points)
   // The stress field is attached to the material: its origin (the shape's origin, see
   // accumulate_stress()) moves with the element, its coefficients stay.
   for (int e = 0; e < n_elements(); ++e)
-    elements[at(e)].stress.origin = shape(e).origin();
+    elements[at(e)].stress.origin = element_origin(e);
 }
 
 double Model::largest_displacement(const Eigen::VectorXd& raw) const {
@@ -524,7 +544,7 @@ void add_block_elements(Model& model, const std::vector<ElementKind>& region_kin
   }
   for (int e = 0; e < model.n_elements(); ++e) {
     if (model.elements[at(e)].kind != ElementKind::nmm)
-      model.elements[at(e)].stress.origin = model.shape(e).origin();
+      model.elements[at(e)].stress.origin = model.element_origin(e);
   }
   for (BoundaryLoop& loop : model.loops) {
     const int e = element_of_block[at(loop.block)];

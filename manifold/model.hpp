@@ -110,6 +110,11 @@ public:
   }
   /// The element's local unknowns taken from a raw vector.
   [[nodiscard]] Eigen::VectorXd element_values(int element, const Eigen::VectorXd& raw) const;
+  /// The same into @p out (resized; no allocation when it has the size: per-step loops).
+  void element_values(int element, const Eigen::VectorXd& raw, Eigen::VectorXd& out) const;
+  /// The origin of the element's strain and stress fields: ElementShape::origin() without
+  /// building the shape.
+  [[nodiscard]] Point2 element_origin(int element) const;
   /// Displacement at @p x of the element's field for the raw unknowns @p raw.
   [[nodiscard]] Point2 displacement(int element, const Point2& x, const Eigen::VectorXd& raw) const;
   /// Material of an element.

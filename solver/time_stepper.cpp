@@ -273,8 +273,11 @@ double TimeStepper::kinetic_energy(const Eigen::VectorXd& velocity) const {
   if (impl_->element_mass.empty())
     return 0.0;
   double kinetic = 0.0;
-  for (int e = 0; e < model_.n_elements(); ++e)
-    kinetic += impl_->element_mass[at(e)].energy(model_.element_values(e, velocity));
+  Eigen::VectorXd values;
+  for (int e = 0; e < model_.n_elements(); ++e) {
+    model_.element_values(e, velocity, values);
+    kinetic += impl_->element_mass[at(e)].energy(values);
+  }
   return kinetic;
 }
 
@@ -466,6 +469,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     // Workspaces: the same size element after element, so no allocation in the loop.
     Eigen::MatrixXd local;
     Eigen::VectorXd element_loads;
+    Eigen::VectorXd element_velocity;
     Eigen::VectorXd inertia_load;
     for (int e = 0; e < model_.n_elements(); ++e) {
       const ModelElement& element = model_.elements[at(e)];
@@ -484,7 +488,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         ElementMass& mass = impl_->element_mass[at(e)];
         integrals.mass(material.density * material.thickness_factor(), mass);
         mass.add_to(local, inertia);
-        inertia_load = mass.times(model_.element_values(e, velocity_));
+        model_.element_values(e, velocity_, element_velocity);
+        mass.times(element_velocity, inertia_load);
         for (std::size_t i = 0; i < dofs.size(); ++i)
           f(dofs[i]) += (2.0 / dt) * inertia_load(static_cast<Eigen::Index>(i));
       }
