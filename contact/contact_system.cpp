@@ -129,6 +129,23 @@ double interpolate(const std::vector<std::pair<double, double>>& values, double 
   return result;
 }
 
+/// The shear offset of a locked edge-to-edge pair at slave parameter u, from the offsets
+/// (anchor minus the projection of the slave point on the master, in master parameters) of
+/// its points: interpolated between them, and the nearest one's beyond them. The springs of
+/// a pair move when the part that presses grows or shrinks; extrapolating anchors (or a
+/// polynomial of the offsets) from a short part to a long one multiplies the rounding-size
+/// differences between the points by the ratio of the lengths (millimetres of shear that
+/// never happened, a pressed part growing from 1e-5 m to 1e-3 m; examples/10).
+double offset_at(const std::vector<std::pair<double, double>>& offsets, double u) {
+  double lo = offsets.front().first;
+  double hi = lo;
+  for (const auto& [v, offset] : offsets) {
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+  return interpolate(offsets, std::clamp(u, lo, hi));
+}
+
 } // namespace
 
 /// The linearised kinematics of one contact point (Shi 3.4-3.5; eq. 3.12-3.16, 3.21-3.24):
@@ -411,12 +428,22 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       else if (state != nullptr)
         lead.offset = std::max(state->offset, lead.offset);
     }
+    // A lock carried on the same pair keeps its anchors (material points of the master), as
+    // shear offsets from where its slave points are now; otherwise it anchors where the slave
+    // is now, on its own entrance line (not the candidate's: an angle-to-angle contact's
+    // spring may be on the alternative line, and an anchor measured along the other edge put
+    // millimetres of shear into the spring).
+    std::vector<std::pair<double, double>> offsets;
+    if (same) {
+      const Point2& a = boundary_.position[at(p.slave_edge)];
+      const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
+      for (const auto& [u, anchor] : state->anchors) {
+        const Point2 slave = g.edge ? Point2(a + u * (d - a)) : a;
+        offsets.emplace_back(u, anchor - projection(p.master, slave));
+      }
+    }
     auto anchor_of = [&](double u, const Point2& slave) {
-      // A lock carried on the same pair keeps its anchors (material points of the master);
-      // otherwise it anchors where the slave is now, on its own entrance line (not the
-      // candidate's: an angle-to-angle contact's spring may be on the alternative line, and
-      // an anchor measured along the other edge put millimetres of shear into the spring).
-      return same ? interpolate(state->anchors, u) : projection(p.master, slave);
+      return projection(p.master, slave) + (same ? offset_at(offsets, u) : 0.0);
     };
     if (g.edge) {
       // Springs where the edges press on each other; all along an intact joint.
@@ -449,6 +476,19 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   }
   counters_.points += static_cast<long>(points_.size());
   last_changed_ = 0;
+  start_.groups = groups_;
+  start_.points = points_;
+  start_.broken = broken_;
+  start_.bonds_broken = counters_.bonds_broken;
+}
+
+void ContactSystem::restart_step() {
+  groups_ = start_.groups;
+  points_ = start_.points;
+  broken_ = start_.broken;
+  counters_.bonds_broken = start_.bonds_broken;
+  last_changed_ = 0;
+  set_hold_shear(hold_shear_);
 }
 
 void ContactSystem::set_hold_shear(bool hold) {
@@ -633,6 +673,16 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     double deepest = -gap;
     double pulling = 0.0; // force of the springs on parts that no longer press
     double pushing = 0.0; // force the springs would take on the parts that now press
+    // The normal force the contact bears: the resultant of its springs, or, for the springs of
+    // an edge-to-edge pair that go where the edges press, that of its springs that push. Springs
+    // left where the edges have lifted off pull; their tension is no normal force for friction
+    // (a pair tipping onto one end would otherwise slide on the force of a lifting end).
+    double bearing = normal;
+    if (g.edge && !lead.bonded) {
+      bearing = 0.0;
+      for (int q = 0; q < g.count; ++q)
+        bearing += points_[at(g.first + q)].stiffness * std::max(0.0, -measure[at(q)].gap);
+    }
     if (g.edge) {
       std::vector<double> samples{gap_at(model, g, g.lo, raw)};
       if (gauss_ == 3)
@@ -649,7 +699,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       }
     }
     const double friction = std::tan(lead.strength.friction_angle);
-    const double limit = std::max(0.0, normal) * friction + cohesion;
+    const double limit = std::max(0.0, bearing) * friction + cohesion;
     const ContactMode before = lead.mode;
     ContactMode after = before;
     bool breaks = false;
@@ -717,9 +767,11 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         const Kinematics k = kinematics(model, p);
         const double t0 = k.g0 > 0.0 ? std::clamp(k.g0 / (k.g0 - m.gap), 0.0, 1.0) : 0.0;
         p.anchor = projection(p.master, p.slave) + t0 * m.ds / length;
-      } else if (before == ContactMode::slide && after == ContactMode::lock) {
-        p.anchor += m.shear / length; // relocks where it is
       }
+      // slide -> lock keeps the anchor the step started with: it sticks where it was. The
+      // slide of this iteration's trial (with friction from the last iteration's normal force)
+      // is no motion that happened; anchoring there froze it into the step (examples/10: a
+      // pivot slid 2.4 mm against the way the load pushes it).
       p.mode = after;
       p.slide_sign = sign;
       if (breaks) {
@@ -745,7 +797,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         sum += points_[at(g.first + q)].normal_force;
       return sum;
     }();
-    const double now = closed(after) && closed(before) ? normal : 0.0;
+    const double now = closed(after) && closed(before) ? bearing : 0.0;
     double placed = 0.0;
     for (int q = 0; q < g.count; ++q)
       placed += points_[at(g.first + q)].stiffness;
@@ -799,14 +851,17 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       g.moved_from = from - g.from;
       g.moved_to = to - g.to;
     }
-    std::vector<std::pair<double, double>> anchors;
+    std::vector<std::pair<double, double>> offsets;
     double normal = 0.0;
     for (int q = 0; q < g.count; ++q) {
       const ContactPoint& p = points_[at(g.first + q)];
-      anchors.emplace_back(p.u, p.anchor);
+      offsets.emplace_back(p.u, p.anchor - projection(p.master, p.slave));
       normal += p.normal_force;
     }
-    place(g, from, to, [&](double u, const Point2&) { return interpolate(anchors, u); });
+    const int master = points_[at(g.first)].master;
+    place(g, from, to, [&](double u, const Point2& slave) {
+      return projection(master, slave) + offset_at(offsets, u);
+    });
     double placed = 0.0;
     for (int q = 0; q < g.count; ++q)
       placed += points_[at(g.first + q)].stiffness;

@@ -149,6 +149,12 @@ public:
     return update.changes == 0 && update.friction_residual <= options_.friction_tolerance;
   }
 
+  /// Back to the contacts as begin_step() left them (modes, springs, anchors, broken bonds):
+  /// a cut step starts its open-close iteration again from the state at the start of the
+  /// step. What a failed try with the longer step reached (a pressed part shrunk to a sliver,
+  /// a lock anchored by that step's motion) is no guide for the shorter one.
+  void restart_step();
+
   /// While set, closed contacts lock and never slide (the initial equilibrium: the shear
   /// springs take what friction could not); for the step begun last.
   void set_hold_shear(bool hold);
@@ -238,6 +244,13 @@ private:
   std::unordered_map<std::uint64_t, Carried> carried_;
   /// Broken bonds, by contact key (a broken joint never heals).
   std::unordered_map<std::uint64_t, bool> broken_;
+  /// The state begin_step() left, for restart_step().
+  struct Start {
+    std::vector<Group> groups;
+    std::vector<ContactPoint> points;
+    std::unordered_map<std::uint64_t, bool> broken;
+    long bonds_broken = 0;
+  } start_;
   int last_changed_ = 0;
   bool hold_shear_ = false;
   double held_open_penetration_ = 0.0; ///< deepest a contact held open may penetrate, m

@@ -288,6 +288,23 @@ private:
     add(candidate);
   }
 
+  /// Whether two vertices of one block can meet: each lies outside the other's material
+  /// wedge (its rays included). Two corners of one block joined by a straight side, or
+  /// across its inside, are no contact however close they are (with a large contact
+  /// distance a foundation's two corners 0.5 m apart got a spring through the whole block,
+  /// examples/10). Vertices at one point (the two faces of a joint's mouth) can meet.
+  bool faces_void(int v, int w) const {
+    const Point2 d = b_.position[at(w)] - b_.position[at(v)];
+    if (d.norm() <= 1e-12 * (b_.position[at(v)].norm() + 1.0))
+      return true;
+    constexpr double tolerance = 1e-9; // rad: a ray of the wedge counts as inside
+    auto inside = [&](int vertex, const Point2& direction) {
+      const double a = angle_from(wedge(b_, vertex).start, direction);
+      return a <= b_.angle(vertex) + tolerance || a >= two_pi - tolerance;
+    };
+    return !inside(v, d) && !inside(w, Point2(-d));
+  }
+
   /// Angle-to-angle (Shi 3.1 [2] and [4], entrance lines 3.2): reduced to angle-to-edge
   /// contacts against the entrance lines.
   void test_vertex_vertex(int v, int w) {
@@ -296,6 +313,8 @@ private:
     const Point2& p = b_.position[at(v)];
     const Point2& q = b_.position[at(w)];
     if ((p - q).norm() > options_.distance || covered_pair(v, w))
+      return;
+    if (b_.block[at(v)] == b_.block[at(w)] && !faces_void(v, w))
       return;
     const std::pair<int, int> key{std::min(v, w), std::max(v, w)};
     if (!vertex_pairs_.insert(key).second)

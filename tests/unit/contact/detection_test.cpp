@@ -137,6 +137,22 @@ TEST(ContactDetection, AThinBlockDoesNotTouchItselfAcrossItsThickness) {
   EXPECT_TRUE(detect_contacts(b, options(0.002), {}).empty());
 }
 
+TEST(ContactDetection, TwoCornersOfOneBlockJoinedByAStraightSideAreNoContact) {
+  // A 3 x 0.5 slab whose sides are split by straight points (where math edges cross them),
+  // searched with a contact distance larger than its thickness (Shi's delta = 0.1 of a 3 m
+  // model). Its corners (0, 0) and (0, 0.5) lie on one straight side: the direction from one
+  // to the other runs along a ray of each one's material wedge, and they can only meet
+  // through the slab. They were an angle-to-angle contact at 0.5 m penetration.
+  const ContactBoundary slab = boundary_of(
+      {{{0, 0}, {1.5, 0}, {3, 0}, {3, 0.25}, {3, 0.5}, {1.5, 0.5}, {0, 0.5}, {0, 0.25}}});
+  EXPECT_TRUE(detect_contacts(slab, options(0.64), {}).empty());
+  // Two slabs stacked with a 0.01 gap: the same corners of different blocks do meet (one
+  // edge-to-edge contact between the facing sides covers them).
+  const ContactBoundary stacked =
+      boundary_of({{{0, 0}, {3, 0}, {3, 0.5}, {0, 0.5}}, {{0, 0.51}, {3, 0.51}, {3, 1}, {0, 1}}});
+  EXPECT_EQ(count(detect_contacts(stacked, options(0.64), {}), ContactKind::edge_edge), 1);
+}
+
 TEST(ContactDetection, TheTwoFacesOfACrackAreInContact) {
   // A slit loop (a crack inside a body, its faces split in three): out along the crack and
   // back. The faces' middle pieces touch; the pieces at each tip share the tip vertex (in
