@@ -266,7 +266,7 @@ Row run_wall(int courses, int bricks, int steps, const Settings& settings) {
     row.analysis = (c.seconds_analysis - c0.seconds_analysis) / n;
     row.pattern = (c.seconds_pattern - c0.seconds_pattern) / n;
     row.assembly = (c.seconds_constraints - c0.seconds_constraints + c.seconds_assembly -
-                    c0.seconds_assembly) /
+                    c0.seconds_assembly + c.seconds_contact_springs - c0.seconds_contact_springs) /
                    n;
     row.update = (c.seconds_update - c0.seconds_update) / n;
     row.unknowns = stepper.n_unknowns();
@@ -441,7 +441,7 @@ int main(int argc, char** argv) {
       std::printf(
           "  per step (%d steps): step %.4f s = factorisation %.4f + solve %.4f + "
           "analysis %.4f + pattern %.4f + constraints/assembly %.4f + update %.4f + "
-          "the rest (begin_step, last mode update) %.4f; begin_step %.4f s\n",
+          "the rest (begin_step, mode updates, step control) %.4f; begin_step %.4f s\n",
           r.steps, r.step, r.factorisation, r.solve, r.analysis, r.pattern, r.assembly, r.update,
           r.step - r.factorisation - r.solve - r.analysis - r.pattern - r.assembly - r.update,
           r.begin_step);

@@ -214,6 +214,21 @@ std::string summary_json(const RunSummary& s) {
   counters.integer("symbolic_analyses", s.solver_counters.symbolic_analyses);
   counters.integer("factorizations", s.solver_counters.factorizations);
   counters.integer("solves", s.solver_counters.solves);
+  counters.integer("plan_rebuilds", s.counters.plan_rebuilds);
+  // Where the steps' time went (StepperCounters): the parts add up to seconds_steps.
+  const StepperCounters& c = s.counters;
+  counters.seconds("seconds_steps", c.seconds_steps);
+  counters.seconds("seconds_step_control", c.seconds_step_control);
+  counters.seconds("seconds_detection", c.seconds_detection);
+  counters.seconds("seconds_constraints", c.seconds_constraints);
+  counters.seconds("seconds_pattern", c.seconds_pattern);
+  counters.seconds("seconds_assembly", c.seconds_assembly);
+  counters.seconds("seconds_contact_springs", c.seconds_contact_springs);
+  counters.seconds("seconds_analysis", c.seconds_analysis);
+  counters.seconds("seconds_factorization", c.seconds_factorization);
+  counters.seconds("seconds_solve", c.seconds_solve);
+  counters.seconds("seconds_contact_modes", c.seconds_contact_modes);
+  counters.seconds("seconds_update", c.seconds_update);
   counters.close();
   root.key("mesher");
   JsonObject mesher(out, root.inner_indent());

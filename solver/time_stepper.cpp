@@ -282,6 +282,10 @@ double TimeStepper::kinetic_energy(const Eigen::VectorXd& velocity) const {
 }
 
 StepReport TimeStepper::advance(double until, bool equilibrium) {
+  // One clock laps through the step: every part's time is the time since the last lap, so
+  // the parts add up to the whole (StepperCounters).
+  const Clock::time_point step_start = Clock::now();
+  Clock::time_point clock = step_start;
   const bool dynamic = options_.integration == TimeIntegration::dynamic && !equilibrium;
   // Static analysis without contact: one solve with the stiffness alone per step; with
   // contact, Shi's static keeps the inertia term and resets the velocity every step. The
@@ -326,17 +330,20 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   // longer step reached; with edge-to-edge springs that go where the edges press, those
   // include a pressed part and anchors fitted to a motion the shorter step does not have:
   // examples/10 lost its pivot that way).
+  lap(clock, counters_.seconds_step_control);
   if (impl_->contact) {
     impl_->contact->begin_step(model_, limit);
     impl_->contact->set_hold_shear(equilibrium);
     ++counters_.contact_searches;
   }
+  lap(clock, counters_.seconds_detection);
   double work = 0.0; // of the loads in the step (its last try)
   for (int cut = 0;; ++cut) {
+    lap(clock, counters_.seconds_step_control); // the checks of a try that was cut
     if (cut > 0 && impl_->contact)
       impl_->contact->restart_step();
+    lap(clock, counters_.seconds_detection); // (the contact states back to the step's start)
     const double t1 = time_ + dt;
-    Clock::time_point clock = Clock::now();
     // Constraints and the reduction of every element.
     std::vector<LinearConstraint> constraints = model_.extension_relations();
     constraints.insert(constraints.end(), impl_->dependencies.begin(), impl_->dependencies.end());
@@ -544,6 +551,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
             scatter(first_contact_plan + i, spring, contact_transform[at(i)]);
         }
       }
+      lap(clock, counters_.seconds_contact_springs);
       const Eigen::VectorXd rhs = map.restrict(f_iteration) + rhs_correction;
       lap(clock, counters_.seconds_assembly);
       if (rebuilt || !impl_->analysed) {
@@ -564,13 +572,14 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       Eigen::VectorXd reduced;
       if (impl_->solver.solve(rhs, reduced) != SolveStatus::ok)
         throw NumericalError("the solve of the step system failed");
-      lap(clock, counters_.seconds_solve);
       raw = map.expand(reduced);
       if (!raw.allFinite())
         throw NumericalError("the step displacement is not finite");
+      lap(clock, counters_.seconds_solve);
       if (!impl_->contact)
         break;
       const ModeUpdate update = impl_->contact->update_modes(model_, raw);
+      lap(clock, counters_.seconds_contact_modes);
       if (impl_->contact->converged(update)) {
         converged = true;
         break;
@@ -652,8 +661,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   if (!equilibrium)
     impl_->load_work += work;
   report.load_work = impl_->load_work;
+  lap(clock, counters_.seconds_step_control);
 
-  Clock::time_point update_clock = Clock::now();
   // Commit: velocities (computed and checked above), stresses, geometry.
   if (dynamic)
     velocity_ = std::move(new_velocity);
@@ -691,7 +700,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   report.time = time_;
   report.dt = dt;
 
-  lap(update_clock, counters_.seconds_update);
+  lap(clock, counters_.seconds_update);
+  counters_.seconds_steps += std::chrono::duration<double>(clock - step_start).count();
   return report;
 }
 

@@ -78,14 +78,21 @@ struct StepperCounters {
   long pattern_builds = 0;
   long plan_rebuilds = 0; ///< couplings changed within the pattern: new plans, same analysis
   long stress_updates = 0;
-  /// Wall time of each part of the steps so far, s (bench/step_bench.cpp reports them).
-  double seconds_constraints = 0.0;   ///< DofMap and the reduction of every element
-  double seconds_pattern = 0.0;       ///< sparsity pattern and scatter plans (when rebuilt)
-  double seconds_assembly = 0.0;      ///< element integrals, matrices and loads
-  double seconds_analysis = 0.0;      ///< symbolic analysis (when the pattern changed)
-  double seconds_factorization = 0.0; ///< numeric factorisation
-  double seconds_solve = 0.0;         ///< triangular solves
-  double seconds_update = 0.0;        ///< velocities, stresses, geometry, kinetic energy
+  /// Wall time of each part of the steps so far, s (bench/step_bench.cpp and
+  /// bench/block_bench.py report them). The parts are laps of one clock through a step, so
+  /// they add up to seconds_steps (every try of a cut step included).
+  double seconds_steps = 0.0;           ///< the whole of step() and equilibrate()
+  double seconds_step_control = 0.0;    ///< time step choice; displacement limit, energy check
+  double seconds_detection = 0.0;       ///< contact detection, transfer (and restart) of states
+  double seconds_constraints = 0.0;     ///< DofMap and the reduction of every coupling
+  double seconds_pattern = 0.0;         ///< sparsity pattern and scatter plans (when rebuilt)
+  double seconds_assembly = 0.0;        ///< element integrals, matrices and loads; right side
+  double seconds_contact_springs = 0.0; ///< contact springs and friction loads, per iteration
+  double seconds_analysis = 0.0;        ///< symbolic analysis (when the pattern changed)
+  double seconds_factorization = 0.0;   ///< numeric factorisation
+  double seconds_solve = 0.0;           ///< triangular solves, expansion to raw unknowns
+  double seconds_contact_modes = 0.0;   ///< open-close mode updates after every solve
+  double seconds_update = 0.0;          ///< velocities, stresses, contact states, geometry
 };
 
 /// Advances a model through time steps.

@@ -247,6 +247,27 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
     EXPECT_NEAR(total, 1250.0 * 9.81 * std::sqrt(0.5), 2e-3 * 1250.0 * 9.81) << entry.file;
   }
   EXPECT_EQ(2 * contact_files, static_cast<int>(series.size()));
+
+  // summary.json's step times (docs/output.md): the parts are laps of one clock, so they add
+  // up to seconds_steps. Each is written with 6 significant digits (relative rounding at
+  // most 5e-6): the rounded parts add up to their sum within 5e-6 of it, the whole is within
+  // 5e-6 of itself, so they agree to 1e-5 (2e-5 leaves a margin for the additions of the
+  // laps). A scene with contact spends time in detection and in the mode updates.
+  const testing::Json summary = parse_json(read_text(out / "summary.json"));
+  const testing::Json& counters = summary.at("counters");
+  const double whole = counters.at("seconds_steps").number;
+  double parts = 0.0;
+  for (const char* part :
+       {"seconds_step_control", "seconds_detection", "seconds_constraints", "seconds_pattern",
+        "seconds_assembly", "seconds_contact_springs", "seconds_analysis", "seconds_factorization",
+        "seconds_solve", "seconds_contact_modes", "seconds_update"}) {
+    EXPECT_GE(counters.at(part).number, 0.0) << part;
+    parts += counters.at(part).number;
+  }
+  EXPECT_GT(whole, 0.0);
+  EXPECT_NEAR(parts, whole, 2e-5 * whole);
+  EXPECT_GT(counters.at("seconds_detection").number, 0.0);
+  EXPECT_GT(counters.at("seconds_contact_modes").number, 0.0);
 }
 
 TEST_F(Cli, OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) {
