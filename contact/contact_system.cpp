@@ -524,11 +524,14 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   auto local = [&](int raw) {
     return static_cast<Eigen::Index>(std::find(k.dofs.begin(), k.dofs.end(), raw) - k.dofs.begin());
   };
+  // Each element's shape once: building one is not free (a VEM block's projector).
+  const ElementShape slave_shape = model.shape(slave_element);
+  const ElementShape master_shape = model.shape(master_element);
   // Adds T_element(x)^T c to h.
   PointInterpolation t;
-  auto add = [&](Eigen::VectorXd& h, int element, std::span<const int> dofs, const Point2& x,
-                 const Point2& c) {
-    model.shape(element).interpolation_at(x, t);
+  auto add = [&](Eigen::VectorXd& h, const ElementShape& shape, std::span<const int> dofs,
+                 const Point2& x, const Point2& c) {
+    shape.interpolation_at(x, t);
     for (std::size_t i = 0; i < dofs.size(); ++i) {
       const auto j = static_cast<Eigen::Index>(i);
       h(local(dofs[i])) += t(0, j) * c.x() + t(1, j) * c.y();
@@ -542,14 +545,14 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
   // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
   k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset;
-  add(k.hn, slave_element, slave_dofs, slave, perp(b - a) / l);
-  add(k.hn, master_element, master_dofs, a, perp(slave - b) / l);
-  add(k.hn, master_element, master_dofs, b, Point2(-perp(slave - a) / l));
+  add(k.hn, slave_shape, slave_dofs, slave, perp(b - a) / l);
+  add(k.hn, master_shape, master_dofs, a, perp(slave - b) / l);
+  add(k.hn, master_shape, master_dofs, b, Point2(-perp(slave - a) / l));
   // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
   const Point2 anchor = a + p.anchor * (b - a);
   k.s0 = (slave - anchor).dot(tangent);
-  add(k.hs, slave_element, slave_dofs, slave, tangent);
-  add(k.hs, master_element, master_dofs, anchor, Point2(-tangent));
+  add(k.hs, slave_shape, slave_dofs, slave, tangent);
+  add(k.hs, master_shape, master_dofs, anchor, Point2(-tangent));
   return k;
 }
 
