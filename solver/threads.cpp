@@ -43,14 +43,20 @@ void limit_threads(int n) {
 
 int blas_threads() { return openblas_get_num_threads(); }
 
-SingleBlasThread::SingleBlasThread() : previous_(openblas_get_num_threads()) {
+SingleBlasThread::SingleBlasThread()
+    : previous_(openblas_get_num_threads()), previous_levels_(omp_get_max_active_levels()) {
   if (previous_ > 1)
     openblas_set_num_threads(1);
+  // CHOLMOD's supernodal factorisation zeroes and scatters large supernodes in OpenMP loops
+  // with num_threads(4) compiled in (CHOLMOD_OMP_NUM_THREADS), which omp_set_num_threads()
+  // does not cap; no active level makes every parallel region run on this thread alone.
+  omp_set_max_active_levels(0);
 }
 
 SingleBlasThread::~SingleBlasThread() {
   if (previous_ > 1)
     openblas_set_num_threads(previous_);
+  omp_set_max_active_levels(previous_levels_);
 }
 
 std::string blas_description() {

@@ -17,9 +17,10 @@ void limit_threads(int n);
 /// Threads OpenBLAS runs on now.
 [[nodiscard]] int blas_threads();
 
-/// Runs OpenBLAS on one thread while it lives (then restores the previous count): for
-/// small factorizations, whose supernodes are too small for a second thread to pay for
-/// waking it (docs/benchmarks.md "CHOLMOD threads").
+/// Runs OpenBLAS and OpenMP (CHOLMOD's own loops) on one thread while it lives (then
+/// restores the previous counts): for small factorizations, whose supernodes are too small
+/// for a second thread to pay for waking it (docs/benchmarks.md "CHOLMOD threads" and
+/// "Blocks: DDA, VEM, NMM").
 class SingleBlasThread {
 public:
   SingleBlasThread();
@@ -31,6 +32,7 @@ public:
 
 private:
   int previous_;
+  int previous_levels_;
 };
 
 /// The BLAS actually linked, e.g. "OpenBLAS 0.3.21 ... (2 threads)".
