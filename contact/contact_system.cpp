@@ -577,21 +577,15 @@ void ContactSystem::contribution(const Model& model,
                                  Eigen::MatrixXd& stiffness,
                                  Eigen::VectorXd& load) const {
   const ContactPoint& p = points_[at(i)];
-  const std::vector<int> dofs = point_dofs(model, i);
-  const Eigen::Index n = static_cast<Eigen::Index>(dofs.size());
-  stiffness = Eigen::MatrixXd::Zero(n, n);
-  load = Eigen::VectorXd::Zero(n);
+  // One kinematics: its unknowns are point_dofs(i), in that order.
+  const Kinematics k = kinematics(model, p);
+  const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
+  stiffness.setZero(n, n);
+  load.setZero(n);
   if (p.mode == ContactMode::open)
     return;
-  const Kinematics k = kinematics(model, p);
-  Eigen::VectorXd hn = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd hs = Eigen::VectorXd::Zero(n);
-  for (std::size_t j = 0; j < k.dofs.size(); ++j) {
-    const auto where =
-        static_cast<Eigen::Index>(std::find(dofs.begin(), dofs.end(), k.dofs[j]) - dofs.begin());
-    hn(where) = k.hn(static_cast<Eigen::Index>(j));
-    hs(where) = k.hs(static_cast<Eigen::Index>(j));
-  }
+  const Eigen::VectorXd& hn = k.hn;
+  const Eigen::VectorXd& hs = k.hs;
   // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
   stiffness += p.stiffness * hn * hn.transpose();
   load -= p.stiffness * k.g0 * hn;
