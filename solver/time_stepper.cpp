@@ -541,9 +541,9 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         Eigen::MatrixXd spring;
         Eigen::VectorXd load;
         for (int i = 0; i < impl_->contact->n_points(); ++i) {
-          impl_->contact->contribution(model_, i, spring, load);
           if (impl_->contact->points()[at(i)].mode == ContactMode::open)
-            continue;
+            continue; // no spring, no load
+          impl_->contact->contribution(model_, i, spring, load);
           const std::vector<int>& dofs = contact_dofs[at(i)];
           for (std::size_t j = 0; j < dofs.size(); ++j)
             f_iteration(dofs[j]) += load(static_cast<Eigen::Index>(j));
