@@ -480,6 +480,17 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   start_.points = points_;
   start_.broken = broken_;
   start_.bonds_broken = counters_.bonds_broken;
+  shapes_.clear();
+  shape_of_element_.assign(static_cast<std::size_t>(model.n_elements()), -1);
+  for (const ContactPoint& p : points_) {
+    for (const int edge : {p.slave_edge, p.master}) {
+      int& index = shape_of_element_[at(edge_element_[at(edge)])];
+      if (index < 0) {
+        index = static_cast<int>(shapes_.size());
+        shapes_.push_back(model.shape(edge_element_[at(edge)]));
+      }
+    }
+  }
 }
 
 void ContactSystem::restart_step() {
@@ -489,6 +500,13 @@ void ContactSystem::restart_step() {
   counters_.bonds_broken = start_.bonds_broken;
   last_changed_ = 0;
   set_hold_shear(hold_shear_);
+}
+
+const ElementShape& ContactSystem::shape(int element) const {
+  NMM_ASSERT(element >= 0 && at(element) < shape_of_element_.size() &&
+                 shape_of_element_[at(element)] >= 0,
+             "no shape built for this element in begin_step()");
+  return shapes_[at(shape_of_element_[at(element)])];
 }
 
 void ContactSystem::set_hold_shear(bool hold) {
@@ -524,9 +542,8 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   auto local = [&](int raw) {
     return static_cast<Eigen::Index>(std::find(k.dofs.begin(), k.dofs.end(), raw) - k.dofs.begin());
   };
-  // Each element's shape once: building one is not free (a VEM block's projector).
-  const ElementShape slave_shape = model.shape(slave_element);
-  const ElementShape master_shape = model.shape(master_element);
+  const ElementShape& slave_shape = shape(slave_element);
+  const ElementShape& master_shape = shape(master_element);
   // Adds T_element(x)^T c to h.
   PointInterpolation t;
   auto add = [&](Eigen::VectorXd& h, const ElementShape& shape, std::span<const int> dofs,

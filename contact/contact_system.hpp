@@ -222,6 +222,9 @@ private:
   };
 
   [[nodiscard]] Kinematics kinematics(const Model& model, const ContactPoint& p) const;
+  /// The shape of @p element at the start of the step (built by begin_step() for the
+  /// elements of every contact point's edges).
+  [[nodiscard]] const ElementShape& shape(int element) const;
   /// Normal gap at slave parameter u of edge group g after the step displacement raw.
   [[nodiscard]] double
   gap_at(const Model& model, const Group& g, double u, const Eigen::VectorXd& raw) const;
@@ -237,6 +240,11 @@ private:
   std::vector<int> edge_element_;
   std::vector<JointStrength> edge_strength_;
   std::vector<char> edge_bonded_;
+  /// Shapes of the elements the contact points' edges belong to, built once per step (the
+  /// geometry stays put through a step; a VEM block's shape computes its projector), and
+  /// each element's index into them (-1: none).
+  std::vector<ElementShape> shapes_;
+  std::vector<int> shape_of_element_;
   int gauss_ = 2;
   std::vector<Group> groups_;
   std::vector<ContactPoint> points_;
