@@ -531,28 +531,35 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   Kinematics k;
   const std::span<const int> slave_dofs = model.element_dofs(slave_element);
   const std::span<const int> master_dofs = model.element_dofs(master_element);
+  // The slave element's unknowns (distinct) come first, at their own positions; then the
+  // master's that the slave does not have. Where each master unknown sits is found once.
   k.dofs.assign(slave_dofs.begin(), slave_dofs.end());
-  for (const int d : master_dofs) {
-    if (std::find(k.dofs.begin(), k.dofs.end(), d) == k.dofs.end())
-      k.dofs.push_back(d);
+  std::vector<Eigen::Index> master_local(master_dofs.size());
+  for (std::size_t i = 0; i < master_dofs.size(); ++i) {
+    const auto end = k.dofs.begin() + static_cast<std::ptrdiff_t>(slave_dofs.size());
+    const auto it = std::find(k.dofs.begin(), end, master_dofs[i]);
+    master_local[i] = it - k.dofs.begin();
+    if (it == end) {
+      master_local[i] = static_cast<Eigen::Index>(k.dofs.size());
+      k.dofs.push_back(master_dofs[i]);
+    }
   }
   const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
   k.hn = Eigen::VectorXd::Zero(n);
   k.hs = Eigen::VectorXd::Zero(n);
-  auto local = [&](int raw) {
-    return static_cast<Eigen::Index>(std::find(k.dofs.begin(), k.dofs.end(), raw) - k.dofs.begin());
-  };
   const ElementShape& slave_shape = shape(slave_element);
   const ElementShape& master_shape = shape(master_element);
-  // Adds T_element(x)^T c to h.
+  // Adds T_element(x)^T c to h, on the slave's unknowns (local = nullptr: at their own
+  // positions) or the master's.
   PointInterpolation t;
-  auto add = [&](Eigen::VectorXd& h, const ElementShape& shape, std::span<const int> dofs,
+  auto add = [&](Eigen::VectorXd& h, const ElementShape& shape, const Eigen::Index* local,
                  const Point2& x, const Point2& c) {
     shape.interpolation_at(x, t);
-    for (std::size_t i = 0; i < dofs.size(); ++i) {
-      const auto j = static_cast<Eigen::Index>(i);
-      h(local(dofs[i])) += t(0, j) * c.x() + t(1, j) * c.y();
-    }
+    NMM_ASSERT(static_cast<std::size_t>(t.cols()) ==
+                   (local != nullptr ? master_dofs : slave_dofs).size(),
+               "an element's interpolation has a column per unknown");
+    for (Eigen::Index j = 0; j < t.cols(); ++j)
+      h(local != nullptr ? local[j] : j) += t(0, j) * c.x() + t(1, j) * c.y();
   };
   const Point2& a = boundary_.position[at(master)];
   const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
@@ -562,14 +569,14 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
   // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
   k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset;
-  add(k.hn, slave_shape, slave_dofs, slave, perp(b - a) / l);
-  add(k.hn, master_shape, master_dofs, a, perp(slave - b) / l);
-  add(k.hn, master_shape, master_dofs, b, Point2(-perp(slave - a) / l));
+  add(k.hn, slave_shape, nullptr, slave, perp(b - a) / l);
+  add(k.hn, master_shape, master_local.data(), a, perp(slave - b) / l);
+  add(k.hn, master_shape, master_local.data(), b, Point2(-perp(slave - a) / l));
   // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
   const Point2 anchor = a + p.anchor * (b - a);
   k.s0 = (slave - anchor).dot(tangent);
-  add(k.hs, slave_shape, slave_dofs, slave, tangent);
-  add(k.hs, master_shape, master_dofs, anchor, Point2(-tangent));
+  add(k.hs, slave_shape, nullptr, slave, tangent);
+  add(k.hs, master_shape, master_local.data(), anchor, Point2(-tangent));
   return k;
 }
 
