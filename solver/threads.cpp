@@ -38,6 +38,9 @@ int available_cores() {
 void limit_threads(int n) {
   NMM_ASSERT(n >= 1, "thread count must be positive");
   omp_set_num_threads(n);
+  // The only OpenMP regions are CHOLMOD's, with num_threads(4) compiled in (threads.hpp):
+  // none active, so that they never run beside OpenBLAS's threads.
+  omp_set_max_active_levels(0);
   openblas_set_num_threads(n);
 }
 

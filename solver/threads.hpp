@@ -11,7 +11,12 @@ namespace nmm {
 [[nodiscard]] int available_cores();
 
 /// Caps OpenMP (CHOLMOD) and OpenBLAS to @p n threads. Uncapped, Debian's CHOLMOD runs 3-5x
-/// slower on this 2-core machine kind (DESIGN.md "Measured facts"). @pre n >= 1.
+/// slower on this 2-core machine kind (DESIGN.md "Measured facts"). OpenMP parallel regions
+/// then run on one thread: the only ones are in CHOLMOD's supernodal factorisation, which
+/// zeroes and scatters supernodes with num_threads(4) compiled in (CHOLMOD_OMP_NUM_THREADS,
+/// beyond omp_set_num_threads()); beside OpenBLAS's threads they made a factorisation of
+/// 1.55e10 flops 1.43x slower, one of 5.6e9 flops 1.67x (docs/benchmarks.md "Blocks: DDA,
+/// VEM, NMM"). @pre n >= 1.
 void limit_threads(int n);
 
 /// Threads OpenBLAS runs on now.
