@@ -14,3 +14,6 @@ for b in "$root"/build/release/bench/bench_*; do
     *) "$b" | tee "$out/$name.txt" ;;  # plain programs: ratios against a baseline in the same run
   esac
 done
+# DDA, VEM and NMM blocks on the same rock mass, and the 70-block wall (about 9 minutes).
+echo "== block_bench"
+python3 "$root/bench/block_bench.py" --work "$root/build/block-bench" | tee "$out/block_bench.txt"

@@ -1,0 +1,278 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+"""Per-step time of DDA, VEM and NMM blocks on the same jointed rock mass (issue 6).
+
+    python3 bench/block_bench.py [--nmm build/release/nmm] [--work build/block-bench]
+                                 [--sizes 100,1000,10000] [--models dda,vem,nmm]
+                                 [--steps 100:20,1000:5,10000:3] [--no-wall] [--no-rock-mass]
+                                 [--threads N]
+
+For every size N and model it writes the rock mass of bench/rock_mass.py (--blocks N --model M
+--steps K --open-close-max 20, seed 1, default joint sets: the same joints for the three
+models), runs `nmm run CASE --quiet` on it and reads the step times that nmm itself measured
+(summary.json "counters", docs/output.md): the parts are laps of one clock through every
+step, so they add up to the step time. Then the 70-block wall of examples/13_block_wall_70
+(dda and vem, with open_close_max = 20 as the case has it, added if it does not), run to
+its end time as the example does (583 steps of 0.012 s and a last one, output every 25).
+
+Prints, per run: the steps, their cuts and factorisations, the mean time per step split into
+detection (contact detection and the transfer of contact states), assembly (dof map,
+pattern, element matrices and loads), contact (springs and friction loads of every
+open-close iteration, and the mode decisions after every solve), factorisation (symbolic
+analyses and numeric factorisations), solve, update (velocities, stresses, contact states,
+geometry) and other (time step control and the energy check), and steps per second; then
+the two goals of issue 6 (the wall's steps in under 0.2 s; at 10000 DDA blocks at least 20
+steps per second) and by what factor they are met or missed. The table is Markdown (for
+docs/benchmarks.md); WORK/block_bench.tsv holds the same figures for bench/block_bench.gp.
+
+The machine's load changes every time: the script prints the 1-minute load average before
+and after each run, and the CPU model. Times are wall-clock as nmm measures them.
+"""
+
+import argparse
+import json
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+WALL_GOAL_SECONDS = 0.2  # issue 6: the 70-block wall's 583 steps
+DDA_GOAL_STEPS_PER_SECOND = 20.0  # issue 6: at 10000 DDA blocks
+
+
+def load_average():
+    try:
+        with open("/proc/loadavg") as f:
+            return float(f.read().split()[0])
+    except OSError:
+        return float("nan")
+
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def parse_steps(text):
+    steps = {}
+    for item in text.split(","):
+        size, count = item.split(":")
+        steps[int(size)] = int(count)
+    return steps
+
+
+def run_nmm(nmm, case, out, threads):
+    command = [nmm]
+    if threads:
+        command += ["--threads", str(threads)]
+    command += ["run", case, "-o", out, "--quiet"]
+    before = load_average()
+    start = time.monotonic()
+    done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    elapsed = time.monotonic() - start
+    after = load_average()
+    summary_file = os.path.join(out, "summary.json")
+    if not os.path.exists(summary_file):
+        sys.exit("block_bench: %s wrote no summary.json:\n%s" % (" ".join(command), done.stdout))
+    with open(summary_file) as f:
+        summary = json.load(f)
+    contacts = 0
+    history = os.path.join(out, "history.csv")
+    if os.path.exists(history):
+        with open(history) as f:
+            lines = f.read().splitlines()
+        if len(lines) > 1:
+            header = lines[0].split(",")
+            contacts = int(float(lines[-1].split(",")[header.index("contacts")]))
+    return summary, contacts, elapsed, (before, after)
+
+
+def figures(label, kind, blocks, summary, contacts, elapsed, load):
+    c = summary["counters"]
+    steps = max(summary["steps"], 1)
+    total = c["seconds_steps"]
+    parts = {
+        "detection": c["seconds_detection"],
+        "assembly": c["seconds_constraints"] + c["seconds_pattern"] + c["seconds_assembly"],
+        "contact": c["seconds_contact_springs"] + c["seconds_contact_modes"],
+        "factorisation": c["seconds_analysis"] + c["seconds_factorization"],
+        "solve": c["seconds_solve"],
+        "update": c["seconds_update"],
+    }
+    parts["other"] = total - sum(parts.values())  # step control (the parts add up)
+    return {
+        "label": label,
+        "kind": kind,
+        "blocks": blocks,
+        "status": summary["status"],
+        "steps": summary["steps"],
+        "cuts": summary["step_cuts"],
+        "unknowns": summary["unknowns"],
+        "contacts": contacts,
+        "factorisations": c["factorizations"],
+        "seconds_steps": total,
+        "wall_seconds": summary["wall_seconds"],
+        "elapsed": elapsed,
+        "per_step": {k: v / steps for k, v in parts.items()},
+        "step": total / steps,
+        "steps_per_second": summary["steps"] / total if total > 0 else float("nan"),
+        "load": load,
+    }
+
+
+def verdict(speed):
+    """speed: achieved over wanted (> 1: faster than the goal)."""
+    if speed >= 1.0:
+        return "met, %.1fx faster than the goal" % speed
+    return "missed, %.1fx too slow" % (1.0 / max(speed, 1e-300))
+
+
+def ms(seconds):
+    value = 1e3 * seconds
+    if value >= 100:
+        return "%.0f" % value
+    if value >= 10:
+        return "%.1f" % value
+    return "%.2f" % value
+
+
+def print_table(rows):
+    print("| scene | model | blocks | unknowns | closed contacts | steps (cuts) | factorisations "
+          "per step | detection | assembly | contact | factorisation | solve | update | other "
+          "| **step** ms | steps/s | load |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
+          "| --- | --- | --- |")
+    for r in rows:
+        p = r["per_step"]
+        status = "" if r["status"] == "completed" else " (%s)" % r["status"][:60]
+        print("| %s | %s | %d | %d | %d | %d (%d)%s | %.1f | %s | %s | %s | %s | %s | %s | %s "
+              "| **%s** | %.3g | %.1f-%.1f |"
+              % (r["label"], r["kind"], r["blocks"], r["unknowns"], r["contacts"], r["steps"],
+                 r["cuts"], status, r["factorisations"] / max(r["steps"], 1), ms(p["detection"]),
+                 ms(p["assembly"]), ms(p["contact"]), ms(p["factorisation"]), ms(p["solve"]),
+                 ms(p["update"]), ms(p["other"]), ms(r["step"]), r["steps_per_second"],
+                 r["load"][0], r["load"][1]))
+    sys.stdout.flush()
+
+
+def write_tsv(path, rows):
+    with open(path, "w") as f:
+        f.write("# label\tmodel\tblocks\tunknowns\tsteps\tcuts\tfactorisations\tdetection\t"
+                "assembly\tcontact\tfactorisation\tsolve\tupdate\tother\tstep\tsteps_per_second\n")
+        for r in rows:
+            p = r["per_step"]
+            f.write("%s\t%s\t%d\t%d\t%d\t%d\t%d\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t%.6g\t"
+                    "%.6g\n" % (r["label"], r["kind"], r["blocks"], r["unknowns"], r["steps"],
+                                r["cuts"], r["factorisations"], p["detection"], p["assembly"],
+                                p["contact"], p["factorisation"], p["solve"], p["update"],
+                                p["other"], r["step"], r["steps_per_second"]))
+
+
+def wall_case(work, model):
+    """examples/13_block_wall_70 with the model switched and open_close_max = 20 added."""
+    source = os.path.join(ROOT, "examples", "13_block_wall_70")
+    folder = os.path.join(work, "wall70_%s" % model)
+    os.makedirs(folder, exist_ok=True)
+    shutil.copy(os.path.join(source, "block_wall_70.geo"), folder)
+    with open(os.path.join(source, "case.toml")) as f:
+        lines = f.read().splitlines()
+    out = []
+    has_limit = any(line.startswith("open_close_max") for line in lines)
+    for line in lines:
+        if line.startswith("model = "):
+            line = 'model = "%s"' % model
+        out.append(line)
+        if line.startswith("[analysis]") and not has_limit:
+            out.append("open_close_max = 20   # added by bench/block_bench.py")
+    case = os.path.join(folder, "case.toml")
+    with open(case, "w") as f:
+        f.write("\n".join(out) + "\n")
+    return case, folder
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0],
+                                formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--nmm", default=os.path.join(ROOT, "build", "release", "nmm"))
+    p.add_argument("--work", default=os.path.join(ROOT, "build", "block-bench"),
+                   help="folder for the generated cases and their output")
+    p.add_argument("--sizes", default="100,1000,10000")
+    p.add_argument("--models", default="dda,vem,nmm")
+    p.add_argument("--steps", default="100:20,1000:5,10000:3",
+                   help="steps per size, SIZE:STEPS,... (default 100:20,1000:5,10000:3)")
+    p.add_argument("--no-wall", action="store_true", help="skip the 70-block wall")
+    p.add_argument("--no-rock-mass", action="store_true", help="only the 70-block wall")
+    p.add_argument("--threads", type=int, help="nmm --threads (default: nmm's, the usable cores)")
+    args = p.parse_args(argv)
+    if not os.path.exists(args.nmm):
+        sys.exit("block_bench: no %s; build it with `bash scripts/build.sh release`" % args.nmm)
+    steps = parse_steps(args.steps)
+    sizes = [int(s) for s in args.sizes.split(",") if s]
+    models = [m for m in args.models.split(",") if m]
+    for size in sizes:
+        if size not in steps:
+            sys.exit("block_bench: no step count for size %d in --steps" % size)
+    os.makedirs(args.work, exist_ok=True)
+    version = subprocess.run([args.nmm, "--version"], stdout=subprocess.PIPE,
+                             text=True).stdout.splitlines()
+    blas = [line.split(None, 1)[1] for line in version if line.strip().startswith("BLAS")]
+    print("block_bench: %s; %d cores; %s; %s; BLAS %s" % (
+        cpu_model(), os.cpu_count(), version[0] if version else "nmm", time.strftime("%Y-%m-%d %H:%M"),
+        blas[0] if blas else "?"))
+    print("  per-step times in ms, means over the run's steps (cut tries included); "
+          "load: 1-minute load average before-after the run")
+    rows = []
+    if not args.no_rock_mass:
+        for size in sizes:
+            for model in models:
+                folder = os.path.join(args.work, "%s_%d" % (model, size))
+                generate = [sys.executable, os.path.join(ROOT, "bench", "rock_mass.py"),
+                            "--blocks", str(size), "--model", model, "--out", folder,
+                            "--steps", str(steps[size]), "--open-close-max", "20"]
+                made = subprocess.run(generate, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                      text=True)
+                if made.returncode != 0:
+                    sys.exit("block_bench: %s failed:\n%s" % (" ".join(generate), made.stdout))
+                planned = int(made.stdout.split("planned ")[1].split()[0])
+                summary, contacts, elapsed, load = run_nmm(
+                    args.nmm, os.path.join(folder, "case.toml"), os.path.join(folder, "out"),
+                    args.threads)
+                rows.append(figures("rock mass", model, planned, summary, contacts, elapsed,
+                                    load))
+                print_table(rows[-1:])
+    if not args.no_wall:
+        for model in ("dda", "vem"):
+            case, folder = wall_case(args.work, model)
+            summary, contacts, elapsed, load = run_nmm(args.nmm, case, os.path.join(folder, "out"),
+                                                       args.threads)
+            rows.append(figures("wall 70", model, 70, summary, contacts, elapsed, load))
+            print_table(rows[-1:])
+    print()
+    print_table(rows)
+    write_tsv(os.path.join(args.work, "block_bench.tsv"), rows)
+    print()
+    for r in rows:
+        if r["label"] == "wall 70":
+            print("goal: the 70-block %s wall's %d steps in under %.1f s: %.2f s of steps (%.2f s "
+                  "with meshing and output): %s" % (
+                      r["kind"], r["steps"], WALL_GOAL_SECONDS, r["seconds_steps"],
+                      r["wall_seconds"], verdict(WALL_GOAL_SECONDS / r["seconds_steps"])))
+        if r["kind"] == "dda" and r["blocks"] >= 9000 and r["label"] == "rock mass":
+            print("goal: at %d DDA blocks at least %.0f steps/s: %.3g steps/s: %s" % (
+                r["blocks"], DDA_GOAL_STEPS_PER_SECOND, r["steps_per_second"],
+                verdict(r["steps_per_second"] / DDA_GOAL_STEPS_PER_SECOND)))
+    print("figures: %s" % os.path.join(args.work, "block_bench.tsv"))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
