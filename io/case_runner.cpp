@@ -574,6 +574,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       }
       const StepReport report = stepper.step(end_time);
       step = report.step;
+      summary.max_penetration = std::max(summary.max_penetration, report.max_penetration);
       history.write_row(report, analysis.monitor_values());
       if (step % every == 0)
         write_step(step);
@@ -610,6 +611,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   result.time = summary.time;
   result.wall_seconds = summary.wall_seconds;
   result.step_cuts = summary.step_cuts;
+  result.max_penetration = summary.max_penetration;
   result.warnings = summary.warnings;
   return result;
 }

@@ -62,9 +62,9 @@ public:
   /// Builds everything; runs no step and writes no file.
   /// @throws InputError "case.toml:LINE: what; what to do" for every problem of the case
   ///         against the geometry: all of build_case_geometry(); a material with
-  ///         `model = "dda"` or `"vem"` (not yet supported); a `[[boundary]]` or `[[load]]`
-  ///         target that is not a Physical Curve / Physical Point of the right kind or that
-  ///         misses the material; a support point, point load or `[[monitor]]` outside the
+  ///         a `dda` or `vem` block with fewer than 3 vertices or no area; a `[[boundary]]` or
+  ///         `[[load]]` target that is not a Physical Curve / Physical Point of the right kind or
+  ///         that misses the material; a support point, point load or `[[monitor]]` outside the
   ///         material; a body that nothing holds in a static analysis (naming its material).
   explicit CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase = {});
   ~CaseAnalysis();
@@ -140,6 +140,8 @@ struct RunResult {
   double time = 0.0;
   double wall_seconds = 0.0;
   long step_cuts = 0;
+  /// Deepest penetration of a closed contact at the end of any step, m.
+  double max_penetration = 0.0;
   std::filesystem::path output_dir;
   /// Number of step files written.
   long output_steps = 0;

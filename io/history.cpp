@@ -78,7 +78,7 @@ std::string history_header(std::span<const std::string> monitor_names) {
     }
   }
   // Columns added after the first release go last: readers that count columns keep working.
-  header += ",load_work";
+  header += ",load_work,step_cuts,max_penetration";
   return header;
 }
 
@@ -111,7 +111,8 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
     }
   }
   if (status >= 0)
-    status = std::fprintf(stream_, ",%.17g", report.load_work);
+    status = std::fprintf(stream_, ",%.17g,%d,%.17g", report.load_work, report.step_cuts,
+                          report.max_penetration);
   if (status < 0 || std::fputc('\n', stream_) == EOF || std::fflush(stream_) != 0)
     throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
                      "; is the disk full?");
@@ -204,6 +205,7 @@ std::string summary_json(const RunSummary& s) {
   root.string("geometry", s.geometry);
   root.integer("unknowns", s.unknowns);
   root.integer("step_cuts", s.step_cuts);
+  root.number("max_penetration", s.max_penetration);
   root.key("counters");
   JsonObject counters(out, root.inner_indent());
   counters.integer("steps", s.counters.steps);

@@ -95,6 +95,8 @@ struct RunSummary {
   std::string geometry;
   long unknowns = 0; ///< unknowns of the linear system after eliminating constraints
   long step_cuts = 0;
+  /// Deepest penetration of a closed contact at the end of any step so far, m.
+  double max_penetration = 0.0;
   StepperCounters counters;
   SolverCounters solver_counters;
   CoverMesherStats mesher;

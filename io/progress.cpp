@@ -102,7 +102,10 @@ void write_closing_summary(std::ostream& out, const RunResult& result, long step
       << (completed ? "" : " of " + std::to_string(steps_requested))
       << (result.steps == 1 ? " step" : " steps") << ", simulated time "
       << number_text(result.time, 6) << " s, wall time " << duration_text(result.wall_seconds)
-      << ", " << result.step_cuts << (result.step_cuts == 1 ? " step cut" : " step cuts") << '\n';
+      << ", " << result.step_cuts << (result.step_cuts == 1 ? " step cut" : " step cuts");
+  if (result.max_penetration > 0.0)
+    out << ", max contact penetration " << number_text(result.max_penetration, 3) << " m";
+  out << '\n';
   if (result.warnings.empty()) {
     out << "  warnings: none\n";
   } else {

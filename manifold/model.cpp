@@ -14,6 +14,7 @@
 #include <map>
 #include <optional>
 #include <span>
+#include <sstream>
 
 namespace nmm {
 
@@ -502,10 +503,16 @@ void add_block_elements(Model& model, const std::vector<ElementKind>& region_kin
                                  : model.loops[at(block.loops.front())].vertices.front();
     const double block_area = polygon.outer.size() >= 3 ? area(polygon) : 0.0;
     if (polygon.outer.size() < 3 || !(block_area > 0.0)) {
+      // No loop with a positive area: name the vertices of the block's first loop.
+      const std::size_t n_vertices = !polygon.outer.empty() || block.loops.empty()
+                                         ? polygon.outer.size()
+                                         : model.loops[at(block.loops.front())].vertices.size();
+      std::ostringstream area_text;
+      area_text.precision(3);
+      area_text << block_area;
       throw InputError("a block of the " + std::string(kind == ElementKind::dda ? "dda" : "vem") +
                        " material \"" + m.name + "\" near " + point_text(somewhere, 6) + " has " +
-                       std::to_string(polygon.outer.size()) + " vertices and an area of " +
-                       std::to_string(block_area) +
+                       std::to_string(n_vertices) + " vertices and an area of " + area_text.str() +
                        " m² after cutting: a block needs three vertices and an area; check the "
                        "joints that cut it out (two joints nearly on top of each other leave "
                        "such slivers)");

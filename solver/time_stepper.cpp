@@ -672,6 +672,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     // Closed contacts carry over with the kinematics of this step (before the geometry moves).
     impl_->contact->end_step(model_, raw);
     report.contacts = impl_->contact->n_closed();
+    report.max_penetration = impl_->contact->max_penetration();
   }
   model_.accumulate_stress(raw);
   ++counters_.stress_updates;

@@ -68,6 +68,8 @@ struct StepReport {
   /// on the step displacements since the first step, the initial equilibrium not counted;
   /// with the kinetic energy it shows a run's energy balance, J (per metre in plane strain).
   double load_work = 0.0;
+  /// Deepest penetration of a closed contact at the end of the step, m (0 without contact).
+  double max_penetration = 0.0;
 };
 
 /// Work counters, for summary.json (issue 8: "skip what the scene does not need").

@@ -33,9 +33,10 @@ TEST(History, HeaderHasTheContractColumnsThenNineColumnsPerMonitorThenTheWorkOfT
   EXPECT_EQ(history_header(monitors),
             "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
             "crest.x,crest.y,crest.ux,crest.uy,crest.vx,crest.vy,crest.sxx,crest.syy,crest.sxy,"
-            "toe.x,toe.y,toe.ux,toe.uy,toe.vx,toe.vy,toe.sxx,toe.syy,toe.sxy,load_work");
-  EXPECT_EQ(history_header({}),
-            "step,time,dt,open_close_iterations,contacts,kinetic_energy,load_work");
+            "toe.x,toe.y,toe.ux,toe.uy,toe.vx,toe.vy,toe.sxx,toe.syy,toe.sxy,load_work,step_cuts,"
+            "max_penetration");
+  EXPECT_EQ(history_header({}), "step,time,dt,open_close_iterations,contacts,kinetic_energy,load_"
+                                "work,step_cuts,max_penetration");
 }
 
 TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
@@ -50,6 +51,8 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   report.contacts = 5;
   report.kinetic_energy = 1.0e-300;
   report.load_work = -0.1;
+  report.step_cuts = 3;
+  report.max_penetration = 2.5e-7;
   MonitorValues m;
   m.x = std::numbers::pi;
   m.sxy = -2.5e9;
@@ -66,8 +69,10 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   std::istringstream cells(row);
   for (std::string cell; std::getline(cells, cell, ',');)
     fields.push_back(cell);
-  ASSERT_EQ(fields.size(), 6u + 9u + 1u);
-  EXPECT_EQ(std::stod(fields.back()), -0.1);
+  ASSERT_EQ(fields.size(), 6u + 9u + 3u);
+  EXPECT_EQ(std::stod(fields[15]), -0.1);
+  EXPECT_EQ(fields[16], "3");
+  EXPECT_EQ(std::stod(fields[17]), 2.5e-7);
   EXPECT_EQ(fields[0], "7");
   EXPECT_EQ(std::stod(fields[1]), 0.1 + 0.2);
   EXPECT_EQ(std::stod(fields[2]), 1.0 / 3.0);
@@ -128,6 +133,7 @@ TEST(Json, SummaryIsValidJsonWithTheContractKeysFirst) {
   s.counters.steps = 12;
   s.solver_counters.factorizations = 13;
   s.mesher.cut_triangles = 4;
+  s.max_penetration = 2.5e-7;
   const testing::Json json = parse_json(summary_json(s));
   ASSERT_TRUE(json.is_object());
   const std::vector<std::string> contract{"status",   "steps",   "time",     "wall_seconds",
@@ -149,6 +155,7 @@ TEST(Json, SummaryIsValidJsonWithTheContractKeysFirst) {
   EXPECT_TRUE(json.at("monitors").at("toe").is_object());
   EXPECT_EQ(json.at("counters").at("factorizations").number, 13);
   EXPECT_EQ(json.at("mesher").at("cut_triangles").number, 4);
+  EXPECT_EQ(json.at("max_penetration").number, 2.5e-7);
   // An empty summary is valid too (no warnings, no monitors).
   EXPECT_NO_THROW(static_cast<void>(parse_json(summary_json(RunSummary{}))));
 }
@@ -310,15 +317,17 @@ TEST(Progress, ClosingSummarySaysStatusStepsWarningsAndWhereTheOutputsAre) {
   result.time = 0.12;
   result.wall_seconds = 75.0;
   result.step_cuts = 1;
+  result.max_penetration = 3.25e-6;
   result.output_dir = "results";
   result.output_steps = 13;
   result.warnings = {"case.toml:4: something"};
   std::ostringstream out;
   write_closing_summary(out, result, 2000);
   const std::string text = out.str();
-  for (const char* part : {"interrupted", "120 of 2000 steps", "1 min 15 s", "1 step cut",
-                           "warnings: 1", "case.toml:4: something", "results/case.pvd",
-                           "results/history.csv", "results/summary.json"})
+  for (const char* part :
+       {"interrupted", "120 of 2000 steps", "1 min 15 s", "1 step cut",
+        "max contact penetration 3.25e-06 m", "warnings: 1", "case.toml:4: something",
+        "results/case.pvd", "results/history.csv", "results/summary.json"})
     EXPECT_NE(text.find(part), std::string::npos) << part << " in\n" << text;
 }
 
