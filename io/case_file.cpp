@@ -545,6 +545,7 @@ CoverMeshSpec read_cover_mesh(Context& context, const toml::table& root) {
   spec.size = view.required_number("size", "math mesh triangle edge length in m", "m", "0.5");
   if (!(spec.size > 0.0))
     view.fail_range("size", spec.size, "the triangle edge length must be > 0 (m)");
+  spec.size_line = view.key_position("size").line;
   if (const toml::node* order = view.find("order");
       order && order->is_number() && order->value<double>() == 2.0)
     view.fail_at_value("order", "[cover_mesh] order = 2 is not yet supported; use order = 0 "
@@ -764,6 +765,7 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
   if (!steps)
     view.fail_missing("steps", "the number of time steps, 1 to 1e8", "2000");
   spec.steps = static_cast<int>(*steps);
+  spec.time_step_line = view.key_position("time_step").line;
   if (const toml::node* node = view.find("time_step")) {
     if (const auto* text = node->as_string()) {
       if (text->get() != "auto")
@@ -943,6 +945,29 @@ void check_whole_case(Context& context,
     context.warn(line_of(root, "analysis", "kind"),
                  "a static analysis with no [[boundary]]: unless contacts hold it, the "
                  "model can move as a rigid body and the solve fails; fix a curve or point");
+  // Shi's contact springs (report 2.6, "g0"): stiff enough that penetrations stay far below
+  // the blocks' elastic deformation, soft enough that the open-close iteration converges
+  // and the equations keep their digits. The usual choice is 10 E to 100 E, 40 E by default;
+  // a factor of 25 from 40 E either way is far from it.
+  double largest_young = 0.0;
+  for (const MaterialRead& read : materials)
+    largest_young = std::max(largest_young, read.spec.young);
+  const double penalty = spec.analysis.penalty_stiffness && largest_young > 0.0
+                             ? *spec.analysis.penalty_stiffness / largest_young
+                             : spec.analysis.penalty;
+  if (penalty < 40.0 / 25.0 || penalty > 40.0 * 25.0) {
+    const bool absolute = spec.analysis.penalty_stiffness.has_value();
+    context.warn(line_of(root, "analysis", absolute ? "penalty_stiffness" : "penalty"),
+                 "[analysis] " + std::string(absolute ? "penalty_stiffness" : "penalty") +
+                     " makes the contact springs " + format_number(penalty) +
+                     " times the largest Young's modulus, far from the usual 40 E (10 E to "
+                     "100 E): " +
+                     (penalty < 40.0 / 25.0
+                          ? "contacts will penetrate by as much as the blocks deform"
+                          : "the open-close iteration may not converge and the equations lose "
+                            "digits") +
+                     "; unless this is intended, use penalty = 40");
+  }
   if (spec.analysis.end_time && spec.analysis.time_step &&
       *spec.analysis.time_step * spec.analysis.steps < *spec.analysis.end_time)
     context.warn(line_of(root, "analysis", "end_time"),

@@ -50,6 +50,8 @@ struct CoverMeshSpec {
   CoverMeshKind kind = CoverMeshKind::regular;
   /// Triangle edge length (m), > 0. Required.
   double size = 0.0;
+  /// Line of `size` in the case file, for later messages.
+  int size_line = 0;
   /// Cover function order for NMM regions: 0 or 1.
   int order = 0;
   /// Refuse to build a math mesh with more triangles than this (guards against a size
@@ -151,6 +153,8 @@ struct AnalysisSpec {
   int steps = 0;
   /// Time step (s); empty for "auto" (chosen from max_step_displacement).
   std::optional<double> time_step;
+  /// Line of `time_step` (or of `[analysis]`) in the case file, for later messages.
+  int time_step_line = 0;
   /// Largest displacement in a step as a fraction of the model size (Shi's g2), (0, 0.5].
   double max_step_displacement = 0.01;
   /// Contact and penalty-boundary spring stiffness as a multiple of the largest Young's
@@ -161,7 +165,8 @@ struct AnalysisSpec {
   /// Most open-close iterations per step, 1..100.
   int open_close_max = 6;
   LinearSolverKind solver = LinearSolverKind::cholmod;
-  /// Most times a step may be cut (halved) before the run stops, 0..50.
+  /// Most times a step may be cut (to a third, or to fit max_step_displacement) before the
+  /// run stops, 0..50.
   int max_step_cuts = 10;
   /// Stop when this time (s) is reached, even before `steps`; empty: run all steps.
   std::optional<double> end_time;

@@ -253,6 +253,7 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   const BoundingBox box = material_bounding_box(physical);
   const double size = box.is_empty() ? 1.0 : std::max(box.size().x(), box.size().y());
   const double tolerance = 1e-9 * size;
+  add_scale_warnings(size);
 
   Scene scene;
   // Supports.
@@ -399,6 +400,58 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
 }
 
 CaseAnalysis::~CaseAnalysis() = default;
+
+void CaseAnalysis::add_scale_warnings(double model_size) {
+  const auto warn = [&](int line, const std::string& message) {
+    warnings_.push_back(spec_.file.string() + ":" + std::to_string(line) + ": " + message);
+  };
+  // A fixed time step longer than Shi's step for max_step_displacement (report 8.5 with the
+  // velocity 0: a free body falls g dt^2 / 2 = g2 L in it) breaks the small-step assumption
+  // of contact at the first step already: the stepper would warn when a step moves too far.
+  double gravity = 0.0;
+  for (const LoadSpec& load : spec_.loads)
+    if (load.kind == LoadKind::gravity)
+      gravity = std::max(gravity, load.vector.norm());
+  const AnalysisSpec& analysis = spec_.analysis;
+  if (analysis.kind == AnalysisKind::dynamic && analysis.time_step && gravity > 0.0) {
+    const double limit = analysis.max_step_displacement * model_size;
+    const double shi = std::sqrt(2.0 * limit / gravity);
+    if (*analysis.time_step > shi) {
+      warn(analysis.time_step_line,
+           "[analysis] time_step = " + number_text(*analysis.time_step) +
+               " s is longer than the step in which a free body falls max_step_displacement "
+               "x model size = " +
+               number_text(limit) + " m (" + number_text(shi) +
+               " s): contacts are found for smaller moves than a step makes; use a shorter "
+               "time_step or time_step = \"auto\"");
+    }
+  }
+  // An nmm block much smaller than the math triangles is carried by the few covers of the
+  // triangles it lies in: its motion is right, its stress coarse.
+  const CoverSystem& covers = geometry_.covers;
+  int smallest = -1;
+  int small_blocks = 0;
+  const double small = 0.01 * spec_.cover_mesh.size * spec_.cover_mesh.size;
+  for (std::size_t b = 0; b < covers.blocks.size(); ++b) {
+    const Block& block = covers.blocks[b];
+    if (block.elements.empty() || block.loops.empty())
+      continue; // dda and vem blocks do not use the math mesh
+    if (block.area < small)
+      ++small_blocks;
+    if (smallest < 0 || block.area < covers.blocks[at(smallest)].area)
+      smallest = static_cast<int>(b);
+  }
+  if (small_blocks > 0) {
+    const Block& block = covers.blocks[at(smallest)];
+    warn(spec_.cover_mesh.size_line,
+         std::to_string(small_blocks) + (small_blocks == 1 ? " nmm block is" : " nmm blocks are") +
+             " much smaller than the math triangles ([cover_mesh] size = " +
+             number_text(spec_.cover_mesh.size) + " m), the smallest " + number_text(block.area) +
+             " m² near " + point_text(covers.loops[at(block.loops.front())].vertices.front(), 6) +
+             ": such a block moves right but its stress is coarse; use a size below " +
+             number_text(std::sqrt(block.area)) + " m (or model = \"dda\" for rigid-like blocks)");
+  }
+}
 
 std::unique_ptr<ContactSystem> CaseAnalysis::make_contact_system(double penalty) const {
   // Each boundary edge takes the properties of its joint ([joints.NAME]) or [contact]; an

@@ -93,6 +93,10 @@ public:
 
 private:
   [[nodiscard]] std::unique_ptr<ContactSystem> make_contact_system(double penalty) const;
+  /// Warnings about scales that the case file alone cannot judge (docs/case-file.md,
+  /// "Checks across tables and warnings"): a fixed time step longer than Shi's for
+  /// max_step_displacement, nmm blocks much smaller than the math triangles.
+  void add_scale_warnings(double model_size);
 
   CaseSpec spec_;
   CaseGeometry geometry_;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/gmsh_reader.hpp"
 
+#include "io/text.hpp"
 #include "mesh/error.hpp"
 #include "mesh/geometry.hpp"
 
@@ -34,13 +35,6 @@ std::atomic<bool> session_alive{false};
 
 // ----------------------------------------------------------------------------------------
 // Message helpers
-
-std::string number_text(double value) {
-  std::ostringstream out;
-  out.precision(10);
-  out << value;
-  return out.str();
-}
 
 std::string tag_list(const std::vector<int>& tags) {
   std::string text;
@@ -439,7 +433,7 @@ private:
   Point2 in_plane(const Point3& p, const std::string& context) const {
     if (!(std::abs(p.z()) <= z_limit_)) {
       throw InputError(file_ + ": " + context + ": the point " + point_text(planar(p)) +
-                       " has z = " + number_text(p.z()) +
+                       " has z = " + number_text(p.z(), 10) +
                        "; nmm is two-dimensional: draw the whole geometry in the plane z = 0");
     }
     return planar(p);
@@ -551,10 +545,10 @@ private:
     }
     if (unresolved > 0.0) {
       throw InputError(file_ + ": " + context + ": curve " + std::to_string(tag) + " (" + type +
-                       ") still deviates by " + number_text(unresolved) +
+                       ") still deviates by " + number_text(unresolved, 10) +
                        " m from its chords after " + std::to_string(1 << max_subdivision_depth) +
                        " subdivisions, more than the curve tolerance of " +
-                       number_text(tolerance_) +
+                       number_text(tolerance_, 10) +
                        " m; raise the curve tolerance or check that the curve is smooth");
     }
     std::vector<Point3> points;
@@ -797,7 +791,7 @@ void check_tolerance(const std::string& file, const GeometryReadOptions& options
     throw InputError(file +
                      ": the curve tolerance must be a finite length >= 0 (0 = automatic: "
                      "1e-3 of the material's bounding-box diagonal), got " +
-                     number_text(options.curve_tolerance));
+                     number_text(options.curve_tolerance, 10));
   }
 }
 
@@ -983,11 +977,11 @@ namespace {
 void check_math_mesh_size(const std::string& name, double size, double max_triangles) {
   if (!(size > 0.0) || !std::isfinite(size)) {
     throw InputError(name + ": cover mesh size must be a positive number of metres, got " +
-                     number_text(size));
+                     number_text(size, 10));
   }
   if (!(max_triangles > 0.0)) {
     throw InputError(name + ": [cover_mesh] max_triangles must be positive, got " +
-                     number_text(max_triangles));
+                     number_text(max_triangles, 10));
   }
 }
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "io/progress.hpp"
 
+#include "io/text.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,13 +11,6 @@
 namespace nmm {
 
 namespace {
-
-std::string number_text(double value, int digits) {
-  std::ostringstream out;
-  out.precision(digits);
-  out << value;
-  return out.str();
-}
 
 constexpr std::size_t max_listed_warnings = 10;
 

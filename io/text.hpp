@@ -28,6 +28,9 @@ namespace nmm {
 [[nodiscard]] std::string_view closest(std::string_view word,
                                        std::span<const std::string_view> candidates);
 
+/// @p value with @p digits significant digits, as iostreams print it (for messages).
+[[nodiscard]] std::string number_text(double value, int digits = 4);
+
 /// Wall-clock seconds since @p start.
 [[nodiscard]] double seconds_since(std::chrono::steady_clock::time_point start);
 

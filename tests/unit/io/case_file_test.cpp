@@ -398,6 +398,24 @@ TEST(CaseFile, WarningsPointAtTheKeyConcerned) {
       << spec.warnings[2];
 }
 
+TEST(CaseFile, PenaltyFarFromFortyTimesYoungIsAWarningAtItsKey) {
+  // Lines: 1-3 head, 4-7 rock (young = 5e9), 8-9 analysis, 10 the penalty.
+  for (const auto& [key, value, times] :
+       {std::tuple{"penalty", "1.0", "1"}, std::tuple{"penalty", "2000.0", "2000"},
+        std::tuple{"penalty_stiffness", "5.0e15", "1e+06"}}) {
+    const CaseSpec spec = parse_case_text(minimal + key + " = " + value + "\n", "case.toml");
+    ASSERT_EQ(spec.warnings.size(), 1u) << key << " = " << value;
+    const std::string expected = std::string("case.toml:10: [analysis] ") + key +
+                                 " makes the contact springs " + times +
+                                 " times the largest Young's modulus, far from the usual 40 E";
+    EXPECT_EQ(spec.warnings[0].rfind(expected, 0), 0u) << spec.warnings[0];
+  }
+  // Within a factor of 25 of 40 E (the paper examples' 100 E too): no warning.
+  for (const char* ok : {"penalty = 2.0\n", "penalty = 100.0\n", "penalty = 1000.0\n",
+                         "penalty_stiffness = 2.0e11\n"})
+    EXPECT_TRUE(parse_case_text(minimal + ok, "case.toml").warnings.empty()) << ok;
+}
+
 // The reference page's examples must be valid cases: they are what users copy.
 TEST(CaseFile, ExamplesOfTheReferencePageAreValid) {
   const fs::path page = fs::path(__FILE__).parent_path() / "../../../docs/case-file.md";

@@ -228,6 +228,33 @@ TEST_F(CaseRunner, InitialVelocityMovesAFreeBodyAndGravityAcceleratesIt) {
   EXPECT_NEAR(m[0].x, 2.1, 1e-12);
 }
 
+TEST_F(CaseRunner, ScaleWarningsGiveTheLineAndTheFigures) {
+  // A fixed step longer than Shi's for max_step_displacement: the plate is 2 m wide, so a
+  // free body may fall 0.01 x 2 m = 0.02 m in a step, which takes sqrt(2 0.02 / 9.81) =
+  // 0.06386 s. 0.1 s is longer (warned at the time_step line, 14); 0.05 s is not.
+  std::string text =
+      replaced(plate_case, "curve = \"right\"\ntraction = [1.0e5, 0.0]", "gravity = [0.0, -9.81]");
+  for (const auto& [step, warned] : {std::pair{"0.1", true}, std::pair{"0.05", false}}) {
+    const std::string dynamic =
+        replaced(text, "kind = \"static\"\nsteps = 3",
+                 std::string("kind = \"dynamic\"\nsteps = 3\ntime_step = ") + step);
+    const CaseAnalysis analysis(read_case_file(case_file(dynamic)));
+    ASSERT_EQ(analysis.warnings().size(), warned ? 1u : 0u) << step;
+    if (warned)
+      expect_all(analysis.warnings()[0],
+                 {case_prefix(dir(), 18), "[analysis] time_step = 0.1 s is longer than",
+                  "= 0.02 m (0.06386 s)", "time_step = \"auto\""});
+  }
+  // A math mesh of 20 m triangles for a 2 m x 1 m plate: the plate is one nmm block of
+  // 2 m^2, below a hundredth of 20 m squared (warned at the size line, 4).
+  const CaseAnalysis coarse(
+      read_case_file(case_file(replaced(plate_case, "size = 0.3", "size = 20.0"))));
+  ASSERT_EQ(coarse.warnings().size(), 1u);
+  expect_all(coarse.warnings()[0],
+             {case_prefix(dir(), 4), "1 nmm block is much smaller than the math triangles",
+              "size = 20 m), the smallest 2 m²", "use a size below 1.414 m"});
+}
+
 // ---------------------------------------------------------------------------------------
 // The run and its files
 
