@@ -70,6 +70,8 @@ struct RunArguments {
   std::string case_file;
   std::string output;
   bool quiet = false;
+  /// --steps: at most this many steps (0: the case's `[analysis] steps`).
+  long steps = 0;
 };
 
 int run_command(const RunArguments& args, bool is_bundled_example) {
@@ -82,6 +84,8 @@ int run_command(const RunArguments& args, bool is_bundled_example) {
     printer.phase("no command given: running the bundled example " + args.case_file +
                   " (nmm --help lists the commands)");
   nmm::CaseSpec spec = nmm::read_case_file(args.case_file);
+  if (args.steps > 0 && args.steps < spec.analysis.steps)
+    spec.analysis.steps = static_cast<int>(args.steps);
   const long steps = spec.analysis.steps;
   nmm::CaseAnalysis analysis(std::move(spec), [&](std::string_view text) { printer.phase(text); });
   for (const std::string& warning : analysis.warnings())
@@ -209,6 +213,7 @@ int run(int argc, char** argv) {
       "  nmm                              run the bundled cantilever example into ./out\n"
       "  nmm run slope.toml               run a case; results go to its [output] dir\n"
       "  nmm run slope.toml -o results --quiet --threads 2\n"
+      "  nmm run slope.toml --steps 10    only the first 10 steps\n"
       "  nmm mesh slope.toml -o mesh      write mesh.vtu, math_mesh.vtu, boundary.vtp only\n"
       "  nmm check slope.toml             read and check the case and its geometry, run nothing\n"
       "  nmm demo                         print Shi's simplex-integration tables\n"
@@ -224,6 +229,10 @@ int run(int argc, char** argv) {
   run_cmd->add_option("-o,--output", run_args.output,
                       "Output folder (default: [output] dir of the case, relative to it)");
   run_cmd->add_flag("-q,--quiet", run_args.quiet, "Print only the closing summary");
+  run_cmd
+      ->add_option("--steps", run_args.steps,
+                   "Run at most N steps (fewer than [analysis] steps: a quick look)")
+      ->check(CLI::Range(1L, 100'000'000L));
 
   std::string mesh_case;
   std::string mesh_output;

@@ -66,13 +66,18 @@ protected:
     return run_case(fs::path(NMM_EXAMPLES_DIR) / name / "case.toml", name);
   }
 
-  /// Runs @p case_file into the folder @p name of the fixture's; checks that it completed.
-  ExampleRun run_case(const fs::path& case_file, const std::string& name) {
+  /// Runs @p case_file into the folder @p name of the fixture's, with @p options added to
+  /// the command line (e.g. `--steps 10`); checks that it completed.
+  ExampleRun run_case(const fs::path& case_file,
+                      const std::string& name,
+                      const std::vector<std::string>& options = {}) {
     const fs::path out = dir_.path() / name;
     const fs::path program = NMM_EXECUTABLE;
     ExampleRun result;
-    result.process = run_process(
-        {program.string(), "run", case_file.string(), "-o", out.string(), "--quiet"}, out);
+    std::vector<std::string> command{program.string(), "run",    case_file.string(), "-o",
+                                     out.string(),     "--quiet"};
+    command.insert(command.end(), options.begin(), options.end());
+    result.process = run_process(command, out);
     EXPECT_EQ(result.process.exit_code, 0) << result.process.err;
     EXPECT_NE(result.process.out.find("completed"), std::string::npos) << result.process.out;
     result.summary = parse_json(read_text(out / "summary.json"));
