@@ -855,13 +855,16 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     if (!l.just_closed) {
       const bool pulls = l.pulling > options_.tension_tolerance * total_normal;
       const bool pushes = l.pushing > options_.lift_off_tolerance * total_normal;
-      // A lift-off point at nearly zero pressure can swing between two places for ever: at
-      // its first move back the contact settles, and from then on only gives up springs
-      // that pull (shrinking cannot cycle; what it leaves out penetrates at nearly zero
-      // pressure).
-      if (!g.settled && ((from - g.from) * g.moved_from < 0.0 || (to - g.to) * g.moved_to < 0.0))
-        g.settled = true;
-      if (g.settled) {
+      // A lift-off point at nearly zero pressure can swing between two places for ever: its
+      // first move back is made, and then the contact settles: from then on it only gives
+      // up springs that pull (shrinking cannot cycle; what it leaves out penetrates at
+      // nearly zero pressure). Settling instead of that first move back kept springs off a
+      // part that pressed hard again (a block tipping forward on its base while locked in
+      // the first solve, then sliding flat: docs/formulation.md, "Lift-off").
+      const bool back = (from - g.from) * g.moved_from < 0.0 || (to - g.to) * g.moved_to < 0.0;
+      if (!g.settled && back && (pulls || pushes)) {
+        g.settled = true; // this first move back is made
+      } else if (g.settled) {
         from = std::max(from, g.from);
         to = std::min(to, g.to);
         if (!pulls || to - from <= 1e-6 * (g.hi - g.lo))
