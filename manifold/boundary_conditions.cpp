@@ -102,7 +102,9 @@ void element_load(const Model& model,
   Point2 force = Point2::Zero();
   for (const BodyLoad& load : body_loads)
     force += load.ramp.at(time) * material.density * load.acceleration;
-  integrals.loads(force, model.elements[at(element)].stress, material.thickness_factor(), out);
+  const ModelElement& e = model.elements[at(element)];
+  integrals.loads(force, e.stress, material.thickness_factor(), out);
+  integrals.add_stabilisation_load(e.stabilisation_force, out);
 }
 
 void add_point_load(const Model& model, const PointLoad& load, double time, Eigen::VectorXd& f) {

@@ -160,4 +160,13 @@ void ElementIntegrals::loads(const Point2& force,
       integrals_);
 }
 
+void ElementIntegrals::add_stabilisation_load(const Eigen::VectorXd& carried,
+                                              Eigen::VectorXd& out) const {
+  if (carried.size() == 0)
+    return;
+  const VemIntegrals* vem = std::get_if<VemIntegrals>(&integrals_);
+  NMM_ASSERT(vem != nullptr, "a carried stabilisation force on an element that is not VEM");
+  out += vem->stabilisation_load(carried);
+}
+
 } // namespace nmm

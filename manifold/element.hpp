@@ -53,6 +53,8 @@ public:
   [[nodiscard]] double rotation(std::span<const double> d) const;
   /// The NMM shape, or null for a block.
   [[nodiscard]] const NmmShape* nmm() const noexcept { return std::get_if<NmmShape>(&shape_); }
+  /// The VEM block's shape, or null for other elements.
+  [[nodiscard]] const VemShape* vem() const noexcept { return std::get_if<VemShape>(&shape_); }
 
 private:
   friend class ElementIntegrals;
@@ -91,6 +93,10 @@ public:
              const LinearField3& stress,
              double thickness,
              Eigen::VectorXd& out) const;
+  /// Adds the load of a VEM block's carried stabilisation force @p carried (2n vertex
+  /// forces; VemIntegrals::stabilisation_load()) to @p out. Nothing for an empty @p carried
+  /// or another kind of element.
+  void add_stabilisation_load(const Eigen::VectorXd& carried, Eigen::VectorXd& out) const;
 
 private:
   std::variant<NmmElementIntegrals, DdaIntegrals, VemIntegrals> integrals_;

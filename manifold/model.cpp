@@ -365,9 +365,32 @@ void Model::accumulate_stress(const Eigen::VectorXd& raw) {
     element_values(e, raw, values);
     const std::span<const double> d(values.data(), static_cast<std::size_t>(values.size()));
     const LinearField3 strain = s.strain(d);
-    LinearField3 stress = rotated(element.stress.about(s.origin()), s.rotation(d));
-    stress.coefficients += elasticity_matrix(material_of(e)) * strain.coefficients;
+    const double rotation = s.rotation(d);
+    const Eigen::Matrix3d elasticity = elasticity_matrix(material_of(e));
+    LinearField3 stress = rotated(element.stress.about(s.origin()), rotation);
+    stress.coefficients += elasticity * strain.coefficients;
     element.stress = stress;
+    if (const VemShape* vem = s.vem()) {
+      // The stabilisation force is carried like the stress (docs/formulation.md, "VEM
+      // block"): its vertex forces turn with the block's rigid rotation of the step, the
+      // same angle as the stress, then the step's eta_E (I - P_u)^T (I - P_u) d (VEM-DDA
+      // paper eq. 49) is added, with the shape of the start of the step, as in the stiffness
+      // the step was solved with.
+      Eigen::VectorXd& force = element.stabilisation_force;
+      if (force.size() == 0) {
+        force = Eigen::VectorXd::Zero(vem->n_dofs());
+      } else if (rotation != 0.0) {
+        const double c = std::cos(rotation);
+        const double sn = std::sin(rotation);
+        for (Eigen::Index i = 0; i + 1 < force.size(); i += 2) {
+          const double fx = force(i);
+          const double fy = force(i + 1);
+          force(i) = c * fx - sn * fy;
+          force(i + 1) = sn * fx + c * fy;
+        }
+      }
+      force += vem->stabilisation_force(elasticity, material_of(e).thickness_factor(), d);
+    }
   }
 }
 

@@ -57,6 +57,11 @@ struct ModelElement {
   /// Accumulated stress (the initial stress of the next step, Shi eq. 2.9-2.10), a linear
   /// field for order-1 covers, constant for order 0.
   LinearField3 stress;
+  /// VEM blocks: the stabilisation's vertex forces accumulated over the steps (2 per vertex,
+  /// local order), the stabilisation's counterpart of `stress`: the next step's load is
+  /// -(I - P_u)^T of it (docs/formulation.md, "VEM block"). Empty for other elements and
+  /// before the first step.
+  Eigen::VectorXd stabilisation_force;
   double area = 0.0;
 };
 
@@ -141,7 +146,9 @@ public:
   [[nodiscard]] std::vector<LinearConstraint> dependency_relations() const;
 
   /// Adds D eps(d) of the step to every element's stress and rotates the stress with the
-  /// element's rigid rotation of the step (objective update). Call before move().
+  /// element's rigid rotation of the step (objective update); the same for a VEM block's
+  /// stabilisation force: every vertex force turned by the rotation, plus
+  /// eta_E (I - P_u)^T (I - P_u) d. Call before move().
   void accumulate_stress(const Eigen::VectorXd& raw);
 
   /// Moves covers, element polygons, loops, curve pieces and @p points with the step

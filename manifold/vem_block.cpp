@@ -118,16 +118,34 @@ double VemShape::rotation(std::span<const double> d) const {
   return projector_.row(2).dot(values);
 }
 
+Eigen::MatrixXd VemShape::vertex_projection() const {
+  const int n = n_vertices();
+  Eigen::MatrixXd pu(2 * n, 2 * n);
+  for (int i = 0; i < n; ++i)
+    pu.middleRows(2 * i, 2) = dda_basis(origin_, vertices_[at(i)]) * projector_;
+  return pu;
+}
+
+Eigen::VectorXd VemShape::stabilisation_force(const Eigen::Matrix3d& elasticity,
+                                              double thickness,
+                                              std::span<const double> d) const {
+  const Eigen::Map<const Eigen::VectorXd> values(d.data(), n_dofs());
+  const Eigen::MatrixXd pu = vertex_projection();
+  // eta_E as VemIntegrals::stiffness() has it (eq. 52), then eq. 49: eta (I - P_u)^T (I - P_u) d.
+  const Eigen::MatrixXd pc = projector_.bottomRows<3>();
+  const double eta =
+      ((area_ * thickness) * pc.transpose() * elasticity * pc).trace() / pu.squaredNorm();
+  const Eigen::VectorXd residual = values - pu * values;
+  return eta * (residual - pu.transpose() * residual);
+}
+
 VemIntegrals::VemIntegrals(const VemShape& shape, std::span<const Polygon> polygons)
     : shape_(shape) {
   const int n = shape.n_vertices();
   // P_u (eq. 50): Pi_P u at the vertices, T*(x_i) H.
-  Eigen::MatrixXd pu(2 * n, 2 * n);
-  for (int i = 0; i < n; ++i)
-    pu.middleRows(2 * i, 2) =
-        dda_basis(shape.origin(), shape.vertices()[at(i)]) * shape.projector();
-  const Eigen::MatrixXd residual = Eigen::MatrixXd::Identity(2 * n, 2 * n) - pu;
-  stabilisation_ = residual.transpose() * residual;
+  const Eigen::MatrixXd pu = shape.vertex_projection();
+  residual_ = Eigen::MatrixXd::Identity(2 * n, 2 * n) - pu;
+  stabilisation_ = residual_.transpose() * residual_;
   projection_trace_ = pu.squaredNorm(); // trace(P_u^T P_u)
   const DdaMoments m = dda_moments(shape.origin(), polygons);
   basis_mass_ = m.mass;
@@ -159,6 +177,11 @@ Eigen::VectorXd VemIntegrals::initial_stress_load(const LinearField3& stress,
                                    stress.coefficients.col(1) * first_.x() +
                                    stress.coefficients.col(2) * first_.y();
   return -thickness * shape_.projector().bottomRows<3>().transpose() * integral;
+}
+
+Eigen::VectorXd VemIntegrals::stabilisation_load(const Eigen::VectorXd& carried) const {
+  NMM_ASSERT(carried.size() == shape_.n_dofs(), "carried stabilisation force of the wrong size");
+  return -(residual_.transpose() * carried);
 }
 
 } // namespace nmm

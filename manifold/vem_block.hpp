@@ -45,6 +45,17 @@ public:
   [[nodiscard]] LinearField3 strain(std::span<const double> d) const;
   /// The rotation r0 of Pi_P u.
   [[nodiscard]] double rotation(std::span<const double> d) const;
+  /// P_u (eq. 50): Pi_P u at the vertices, T*(x_i) H; 2n x 2n. It reproduces every linear
+  /// field and is a projector (P_u² = P_u), so I - P_u vanishes exactly on linear fields.
+  [[nodiscard]] Eigen::MatrixXd vertex_projection() const;
+  /// The stabilisation's vertex forces of the step displacement @p d:
+  /// eta_E (I - P_u)^T (I - P_u) d (eq. 49), eta_E of eq. 52 with the elasticity matrix
+  /// @p elasticity times @p thickness, as VemIntegrals::stiffness(); 2n values. The step
+  /// adds them to the block's carried stabilisation force (docs/formulation.md, "VEM
+  /// block").
+  [[nodiscard]] Eigen::VectorXd stabilisation_force(const Eigen::Matrix3d& elasticity,
+                                                    double thickness,
+                                                    std::span<const double> d) const;
 
 private:
   std::vector<Point2> vertices_;
@@ -70,10 +81,16 @@ public:
   /// -S P_c^T sigma0 (eq. 60), sigma0 the mean of the stress field over the block.
   [[nodiscard]] Eigen::VectorXd initial_stress_load(const LinearField3& stress,
                                                     double thickness) const;
+  /// The load of a carried stabilisation force @p carried (2n vertex forces): -(I - P_u)^T
+  /// f, as the initial stress gives -S P_c^T sigma0 (eq. 60). (I - P_u)^T keeps the part
+  /// that does no work on the linear fields of the current shape: the load has no resultant,
+  /// no moment and does not load the constant strain.
+  [[nodiscard]] Eigen::VectorXd stabilisation_load(const Eigen::VectorXd& carried) const;
 
 private:
   const VemShape& shape_;
-  /// (I - P_u)^T (I - P_u) and trace(P_u^T P_u) (eq. 49-50).
+  /// I - P_u, (I - P_u)^T (I - P_u) and trace(P_u^T P_u) (eq. 49-50).
+  Eigen::MatrixXd residual_;
   Eigen::MatrixXd stabilisation_;
   double projection_trace_ = 0.0;
   Eigen::Matrix<double, 6, 6> basis_mass_; ///< P_m (eq. 56)

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Verification of the special covers (issue 6): a DDA block spinning freely keeps its area
 // and its angular velocity; DDA and VEM blocks under a uniform load have the exact constant
-// stress; a region switches model with one word and gives the same rigid motion.
+// stress; a region switches model with one word and gives the same rigid motion; a loaded
+// block stays in its equilibrium step after step (a VEM block's stabilisation force is
+// carried), and the carried force turns with the block.
 #include "mesh/error.hpp"
 
 #include "verification_support.hpp"
@@ -143,6 +145,151 @@ TEST(SpecialBlocks, BlockWithoutThreeVerticesOrAreaIsAnInputErrorNamingItsMateri
       }
     }
   }
+}
+
+TEST(VemBlock, LoadedBlockReachesEquilibriumInOneStepAndStaysThere) {
+  // The concave L block as one VEM block, static (velocity reset every step), held at two
+  // corners (three components: statically determinate), under constant point loads at three
+  // vertices that deform it with more than a linear field: hourglass deformation that only
+  // the stabilisation term resists. The first step solves the equilibrium; every later step
+  // starts from it, so its step displacement comes only from the geometry update (the next
+  // step's equations are built on the moved block): of the order of the strain times the
+  // first step's displacement. The loads give a strain of about 1e-12 (1e-3 N on 1 m of a
+  // 1 GPa block), so 19 more steps may add 19 * 1e-12 (times a geometric factor of order 1)
+  // of the first displacement: 1e-9 relative bounds it. A block that forgets its
+  // stabilisation force between steps has its hourglass part pushed back by nothing and
+  // creeps by a fraction of order 1 of the first step, every step. (A DDA block has no
+  // stabilisation; its largest displacement is measured from turned vertex positions, whose
+  // rounding, 4e-16 m, would dominate at this scale.)
+  const Point2 o(0.0, 0.0);
+  MaterialRegion block{"block",
+                       {{{o, o + Point2(2, 0), o + Point2(2, 1), o + Point2(1, 1), o + Point2(1, 2),
+                          o + Point2(0, 2)},
+                         {}}}};
+  testing::Setup s = testing::make_setup({block}, {}, {}, nullptr, 0.5,
+                                         elastic(1e9, 0.25, 2500.0, PlaneCondition::stress), 0,
+                                         {ElementKind::vem});
+  Scene scene;
+  for (const auto& [x, fix_x] : {std::pair{Point2(0, 0), true}, std::pair{Point2(2, 0), false}}) {
+    SupportPoint hold;
+    hold.point = {s.model.find_element(x, 1e-9), x};
+    hold.start = x;
+    hold.fix_x = fix_x;
+    hold.fix_y = true;
+    hold.origin = "hold";
+    scene.supports.push_back(hold);
+  }
+  const double f = 1e-3; // N
+  for (const auto& [x, force] :
+       {std::pair{Point2(1, 1), Point2(-f, -f)}, std::pair{Point2(1, 2), Point2(f, 0.0)},
+        std::pair{Point2(2, 1), Point2(0.0, -f)}}) {
+    PointLoad load;
+    load.point = {s.model.find_element(x, 1e-9), x};
+    load.force = force;
+    scene.point_loads.push_back(load);
+  }
+  StepperOptions options;
+  options.integration = TimeIntegration::static_reset;
+  options.time_step = 1.0;
+  TimeStepper stepper(s.model, scene, options);
+  const double first = stepper.step(1.0).max_displacement;
+  double later = 0.0; // the later steps' largest displacements, added
+  const int n_steps = 20;
+  for (int step = 2; step <= n_steps; ++step)
+    later += stepper.step(static_cast<double>(step)).max_displacement;
+  std::printf("vem block, constant loads: first step %.6e m, the next %d steps %.3e of it\n", first,
+              n_steps - 1, later / first);
+  EXPECT_GT(first, 1e-12); // the loads do move it (8e-12 m)
+  EXPECT_LT(later, 1e-9 * first);
+}
+
+TEST(VemBlock, CarriedStabilisationForceTurnsWithTheBlock) {
+  // A VEM L block given a carried stabilisation force by a step of hourglass deformation,
+  // then turned rigidly by 90 degrees in 100 steps of exact rotations. A vertex force of the
+  // block is material: it must turn with the block, as the stress does. Each step turns it
+  // by the step's rotation r0 of Pi_P u, which for an exact rotation by a is sin a (the
+  // stress turns by the same angle), so after N steps the force is short of the full turn
+  // theta by theta - N sin(theta / N) = theta³ / (6 N²) = 6.5e-5 rad: the tolerance is
+  // 1.1 times that, relative to the force. The rotation adds no stabilisation force (an
+  // affine step has no hourglass part), the load it gives on the turned block is the first
+  // load turned, without resultant and moment (1e-9 of the force, N and N m over 3 m of
+  // block: rounding). A force left unturned would be off by sqrt(2) of itself.
+  const Point2 o(1000.0, -500.0);
+  MaterialRegion block{"block",
+                       {{{o, o + Point2(2, 0), o + Point2(2, 1), o + Point2(1, 1), o + Point2(1, 2),
+                          o + Point2(0, 2)},
+                         {}}}};
+  testing::Setup s = testing::make_setup({block}, {}, {}, nullptr, 0.5,
+                                         elastic(1e9, 0.25, 2500.0, PlaneCondition::stress), 0,
+                                         {ElementKind::vem});
+  Model& model = s.model;
+  ASSERT_EQ(model.n_elements(), 1);
+  ASSERT_EQ(model.n_dofs(), 12);
+  // An hourglass step: the re-entrant vertex (index 3) pulled inwards by 1 mm.
+  Eigen::VectorXd hourglass = Eigen::VectorXd::Zero(12);
+  hourglass(6) = -1e-3;
+  hourglass(7) = -1e-3;
+  model.accumulate_stress(hourglass);
+  std::vector<MaterialPoint> points;
+  model.move(hourglass, points);
+  const Eigen::VectorXd force0 = model.elements[0].stabilisation_force;
+  ASSERT_EQ(force0.size(), 12);
+  ASSERT_GT(force0.norm(), 1e3); // eta_E ~ E t: of order 1e9 * 1e-3 N
+  auto load_of = [&model]() {
+    const ElementShape shape = model.shape(0);
+    const ElementIntegrals integrals(shape, model.elements[0].polygons);
+    Eigen::VectorXd load = Eigen::VectorXd::Zero(12);
+    integrals.add_stabilisation_load(model.elements[0].stabilisation_force, load);
+    return load;
+  };
+  const Eigen::VectorXd load0 = load_of();
+  // Turn by 90 degrees about the mean of the vertices in 100 exact rotations.
+  const double theta = pi / 2.0;
+  const int n = 100;
+  const double a = theta / n;
+  Eigen::Matrix2d step_rotation;
+  step_rotation << std::cos(a), -std::sin(a), std::sin(a), std::cos(a);
+  for (int k = 0; k < n; ++k) {
+    Point2 c = Point2::Zero();
+    for (const ModelCover& cover : model.covers)
+      c += cover.position / 6.0;
+    Eigen::VectorXd raw(12);
+    for (int i = 0; i < 6; ++i) {
+      const Point2 r = model.covers[static_cast<std::size_t>(i)].position - c;
+      raw.segment<2>(2 * i) = step_rotation * r - r;
+    }
+    model.accumulate_stress(raw);
+    model.move(raw, points);
+  }
+  Eigen::Matrix2d turn;
+  turn << 0.0, -1.0, 1.0, 0.0;
+  auto turned = [&turn](const Eigen::VectorXd& v) {
+    Eigen::VectorXd out(v.size());
+    for (Eigen::Index i = 0; i < v.size(); i += 2)
+      out.segment<2>(i) = turn * v.segment<2>(i);
+    return out;
+  };
+  const Eigen::VectorXd& force = model.elements[0].stabilisation_force;
+  const double shortfall = std::pow(theta, 3) / (6.0 * n * n);
+  const double error = (force - turned(force0)).norm() / force0.norm();
+  // The load on the turned block: no resultant, no moment about any point.
+  const Eigen::VectorXd load = load_of();
+  Point2 resultant = Point2::Zero();
+  double moment = 0.0;
+  for (int i = 0; i < 6; ++i) {
+    const Point2 fi = load.segment<2>(2 * i);
+    const Point2 r = model.covers[static_cast<std::size_t>(i)].position - o;
+    resultant += fi;
+    moment += r.x() * fi.y() - r.y() * fi.x();
+  }
+  const double load_error = (load - turned(load0)).norm() / load0.norm();
+  std::printf("carried stabilisation force turned by 90 degrees: %.3e of it off the turned "
+              "force (theta³/6N² = %.3e), load %.3e off, resultant %.3e N, moment %.3e N m\n",
+              error, shortfall, load_error, resultant.norm(), moment);
+  EXPECT_LT(error, 1.1 * shortfall);
+  EXPECT_LT(load_error, 1.1 * shortfall);
+  EXPECT_LT(resultant.norm(), 1e-9 * load0.norm());
+  EXPECT_LT(std::abs(moment), 1e-9 * load0.norm());
 }
 
 } // namespace
