@@ -64,8 +64,9 @@ struct StepReport {
   int step_cuts = 0;             ///< times this step was cut and redone
   double kinetic_energy = 0.0;   ///< J (per metre in plane strain)
   double max_displacement = 0.0; ///< largest step displacement, m
-  /// Work of the loads (body forces, point and curve loads, the release of initial stresses)
-  /// on the step displacements since the first step, the initial equilibrium not counted;
+  /// Work of the loads (body forces, point and curve loads, the release of initial stresses
+  /// and of VEM blocks' carried stabilisation forces) on the step displacements since the
+  /// first step, the initial equilibrium not counted;
   /// with the kinetic energy it shows a run's energy balance, J (per metre in plane strain).
   double load_work = 0.0;
   /// Deepest penetration of a closed contact at the end of the step, m (0 without contact).
