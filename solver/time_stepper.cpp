@@ -184,6 +184,8 @@ TimeStepper::TimeStepper(Model& model,
   std::set<int> used_materials;
   for (const ModelElement& e : model_.elements)
     used_materials.insert(e.material);
+  for (const int m : used_materials)
+    has_mass_ = has_mass_ || model_.materials[at(m)].density > 0.0;
   if (options_.integration == TimeIntegration::dynamic) {
     for (const int m : used_materials) {
       if (!(model_.materials[at(m)].density > 0.0)) {
@@ -291,16 +293,22 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   // contact, Shi's static keeps the inertia term and resets the velocity every step. The
   // initial equilibrium is a solve with the stiffness alone, at the current time.
   const bool with_mass = !equilibrium && (dynamic || impl_->contact != nullptr);
+  // A static step with contact moves as far as its inertia term lets it: with mass, it is
+  // sized and cut like a dynamic one (Shi 8.5); without (no density given), the inertia
+  // term is nil and the step is a load step.
+  const bool inertial = with_mass && (dynamic || has_mass_);
   const double limit = options_.max_step_displacement * model_size_;
 
   double dt = 0.0;
   if (options_.time_step) {
     dt = *options_.time_step;
-  } else if (!dynamic) {
-    dt = 1.0;
+  } else if (!inertial) {
+    dt = 1.0; // a static load step: one solve with the stiffness alone
   } else {
     // Shi 8.5: G dt² + V dt - D = 0 with G the largest load per mass, V the largest
-    // velocity, D the allowed step displacement.
+    // velocity, D the allowed step displacement. A static analysis with contact keeps the
+    // inertia term and starts every step at rest: V = 0, dt = sqrt(D / G) (a 1 s step let a
+    // free block fall 4.9 m in one iteration).
     double g = 0.0;
     for (const BodyLoad& load : scene_.body_loads)
       g = std::max(g, load.acceleration.norm() * load.ramp.at(time_));
@@ -310,8 +318,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
               model_.material_of(e).thickness_factor();
     for (const PointLoad& load : scene_.point_loads)
       g = std::max(g, load.force.norm() / std::max(mass, 1e-300));
-    double v = 0.0;
-    for (int c = 0; c < model_.n_covers(); ++c)
+    double v = 0.0; // static: every step starts at rest
+    for (int c = 0; c < model_.n_covers() && dynamic; ++c)
       v = std::max(v, Point2(velocity_(model_.dof(c, 0)), velocity_(model_.dof(c, 1))).norm());
     if (g > 0.0)
       dt = (-v + std::sqrt(v * v + 4.0 * g * limit)) / (2.0 * g);
@@ -329,7 +337,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   // the contact state at the start of the step (Shi 8.2 continues it from the modes the
   // longer step reached; with edge-to-edge springs that go where the edges press, those
   // include a pressed part and anchors fitted to a motion the shorter step does not have:
-  // examples/10 lost its pivot that way).
+  // examples/10 lost its pivot that way). Rules tried: docs/formulation.md, "Friction".
   lap(clock, counters_.seconds_step_control);
   if (impl_->contact) {
     impl_->contact->begin_step(model_, limit);
@@ -613,7 +621,9 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
 
     const double largest = model_.largest_displacement(raw);
     report.max_displacement = largest;
-    if (largest > limit && dynamic) {
+    // Dynamic steps, and static ones with contact (their inertia term lets free bodies move
+    // by g dt² / 2 in a step), are cut to the step displacement limit (Shi 8.5).
+    if (largest > limit && inertial) {
       if (!options_.time_step && cut < options_.max_step_cuts) {
         dt *= std::max(0.1, 0.9 * limit / largest);
         ++report.step_cuts;

@@ -167,6 +167,7 @@ private:
   double time_ = 0.0;
   long step_ = 0;
   double model_size_ = 1.0;
+  bool has_mass_ = false; ///< some material has a density
   StepperCounters counters_;
   std::vector<std::string> warnings_;
   std::unique_ptr<Impl> impl_;
