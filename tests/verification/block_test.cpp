@@ -19,15 +19,30 @@ using testing::elastic;
 
 constexpr double pi = 3.14159265358979323846;
 
-/// An L-shaped (concave) block of 3 m², far from the origin, alone in the model.
-testing::Setup l_block(ElementKind kind) {
-  const Point2 o(1000.0, -500.0);
+/// Holds the rigid motion of a body with corners at (0, 0) and (2, 0): the first in x and y,
+/// the second in y.
+void hold_rigid_motion(const Model& model, Scene& scene) {
+  for (const auto& [x, fix_x] : {std::pair{Point2(0, 0), true}, std::pair{Point2(2, 0), false}}) {
+    SupportPoint hold;
+    hold.point = {model.find_element(x, 1e-9), x};
+    hold.start = x;
+    hold.fix_x = fix_x;
+    hold.fix_y = true;
+    hold.origin = "hold";
+    scene.supports.push_back(hold);
+  }
+}
+
+/// An L-shaped (concave) block of 3 m² with its corner at @p o, alone in the model.
+testing::Setup l_block(ElementKind kind,
+                       Point2 o = Point2(1000.0, -500.0),
+                       PlaneCondition plane = PlaneCondition::strain) {
   MaterialRegion block{"block",
                        {{{o, o + Point2(2, 0), o + Point2(2, 1), o + Point2(1, 1), o + Point2(1, 2),
                           o + Point2(0, 2)},
                          {}}}};
-  return testing::make_setup({block}, {}, {}, nullptr, 0.5,
-                             elastic(1e9, 0.25, 2500.0, PlaneCondition::strain), 0, {kind});
+  return testing::make_setup({block}, {}, {}, nullptr, 0.5, elastic(1e9, 0.25, 2500.0, plane), 0,
+                             {kind});
 }
 
 TEST(DdaBlock, SpinsOneRevolutionKeepingItsAreaAndItsAngularVelocity) {
@@ -85,16 +100,7 @@ TEST(SpecialBlocks, UniformTensionGivesTheExactStressInDdaAndVemBlocks) {
     scene.curve_loads.push_back(testing::traction_load(0, {-1e6, 0.0}));
     scene.curve_loads.push_back(testing::traction_load(1, {1e6, 0.0}));
     scene.curve_loads.push_back(testing::traction_load(2, {1e6, 0.0}));
-    // Hold the rigid motion: the bottom-left corner in x and y, the bottom-right in y.
-    for (const auto& [x, fix_x] : {std::pair{Point2(0, 0), true}, std::pair{Point2(2, 0), false}}) {
-      SupportPoint hold;
-      hold.point = {s.model.find_element(x, 1e-9), x};
-      hold.start = x;
-      hold.fix_x = fix_x;
-      hold.fix_y = true;
-      hold.origin = "hold";
-      scene.supports.push_back(hold);
-    }
+    hold_rigid_motion(s.model, scene);
     StepperOptions options;
     options.integration = TimeIntegration::static_reset;
     TimeStepper stepper(s.model, scene, options);
@@ -161,24 +167,9 @@ TEST(VemBlock, LoadedBlockReachesEquilibriumInOneStepAndStaysThere) {
   // creeps by a fraction of order 1 of the first step, every step. (A DDA block has no
   // stabilisation; its largest displacement is measured from turned vertex positions, whose
   // rounding, 4e-16 m, would dominate at this scale.)
-  const Point2 o(0.0, 0.0);
-  MaterialRegion block{"block",
-                       {{{o, o + Point2(2, 0), o + Point2(2, 1), o + Point2(1, 1), o + Point2(1, 2),
-                          o + Point2(0, 2)},
-                         {}}}};
-  testing::Setup s = testing::make_setup({block}, {}, {}, nullptr, 0.5,
-                                         elastic(1e9, 0.25, 2500.0, PlaneCondition::stress), 0,
-                                         {ElementKind::vem});
+  testing::Setup s = l_block(ElementKind::vem, Point2(0.0, 0.0), PlaneCondition::stress);
   Scene scene;
-  for (const auto& [x, fix_x] : {std::pair{Point2(0, 0), true}, std::pair{Point2(2, 0), false}}) {
-    SupportPoint hold;
-    hold.point = {s.model.find_element(x, 1e-9), x};
-    hold.start = x;
-    hold.fix_x = fix_x;
-    hold.fix_y = true;
-    hold.origin = "hold";
-    scene.supports.push_back(hold);
-  }
+  hold_rigid_motion(s.model, scene);
   const double f = 1e-3; // N
   for (const auto& [x, force] :
        {std::pair{Point2(1, 1), Point2(-f, -f)}, std::pair{Point2(1, 2), Point2(f, 0.0)},
@@ -215,13 +206,7 @@ TEST(VemBlock, CarriedStabilisationForceTurnsWithTheBlock) {
   // load turned, without resultant and moment (1e-9 of the force, N and N m over 3 m of
   // block: rounding). A force left unturned would be off by sqrt(2) of itself.
   const Point2 o(1000.0, -500.0);
-  MaterialRegion block{"block",
-                       {{{o, o + Point2(2, 0), o + Point2(2, 1), o + Point2(1, 1), o + Point2(1, 2),
-                          o + Point2(0, 2)},
-                         {}}}};
-  testing::Setup s = testing::make_setup({block}, {}, {}, nullptr, 0.5,
-                                         elastic(1e9, 0.25, 2500.0, PlaneCondition::stress), 0,
-                                         {ElementKind::vem});
+  testing::Setup s = l_block(ElementKind::vem, o, PlaneCondition::stress);
   Model& model = s.model;
   ASSERT_EQ(model.n_elements(), 1);
   ASSERT_EQ(model.n_dofs(), 12);
