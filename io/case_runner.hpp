@@ -61,8 +61,8 @@ class CaseAnalysis {
 public:
   /// Builds everything; runs no step and writes no file.
   /// @throws InputError "case.toml:LINE: what; what to do" for every problem of the case
-  ///         against the geometry: all of build_case_geometry(); a material with
-  ///         a `dda` or `vem` block with fewer than 3 vertices or no area; a `[[boundary]]` or
+  ///         against the geometry: all of build_case_geometry(); a `dda` or `vem` block with fewer
+  ///         than 3 vertices or no area; a `[[boundary]]` or
   ///         `[[load]]` target that is not a Physical Curve / Physical Point of the right kind or
   ///         that misses the material; a support point, point load or `[[monitor]]` outside the
   ///         material; a body that nothing holds in a static analysis (naming its material).

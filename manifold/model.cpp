@@ -5,6 +5,7 @@
 #include "mesh/error.hpp"
 #include "mesh/union_find.hpp"
 
+#include <Eigen/Geometry>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
@@ -380,14 +381,8 @@ void Model::accumulate_stress(const Eigen::VectorXd& raw) {
       if (force.size() == 0) {
         force = Eigen::VectorXd::Zero(vem->n_dofs());
       } else if (rotation != 0.0) {
-        const double c = std::cos(rotation);
-        const double sn = std::sin(rotation);
-        for (Eigen::Index i = 0; i + 1 < force.size(); i += 2) {
-          const double fx = force(i);
-          const double fy = force(i + 1);
-          force(i) = c * fx - sn * fy;
-          force(i + 1) = sn * fx + c * fy;
-        }
+        Eigen::Map<Eigen::Matrix2Xd> vertex_forces(force.data(), 2, force.size() / 2);
+        vertex_forces = Eigen::Rotation2Dd(rotation).toRotationMatrix() * vertex_forces;
       }
       force += vem->stabilisation_force(elasticity, material_of(e).thickness_factor(), d);
     }

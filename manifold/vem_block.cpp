@@ -126,15 +126,19 @@ Eigen::MatrixXd VemShape::vertex_projection() const {
   return pu;
 }
 
+Eigen::MatrixXd VemShape::consistency_stiffness(const Eigen::Matrix3d& elasticity,
+                                                double thickness) const {
+  const Eigen::MatrixXd pc = projector_.bottomRows<3>();
+  return (area_ * thickness) * pc.transpose() * elasticity * pc;
+}
+
 Eigen::VectorXd VemShape::stabilisation_force(const Eigen::Matrix3d& elasticity,
                                               double thickness,
                                               std::span<const double> d) const {
   const Eigen::Map<const Eigen::VectorXd> values(d.data(), n_dofs());
   const Eigen::MatrixXd pu = vertex_projection();
-  // eta_E as VemIntegrals::stiffness() has it (eq. 52), then eq. 49: eta (I - P_u)^T (I - P_u) d.
-  const Eigen::MatrixXd pc = projector_.bottomRows<3>();
-  const double eta =
-      ((area_ * thickness) * pc.transpose() * elasticity * pc).trace() / pu.squaredNorm();
+  // eq. 49 with eta_E of eq. 52, as in VemIntegrals::stiffness(): eta (I - P_u)^T (I - P_u) d.
+  const double eta = consistency_stiffness(elasticity, thickness).trace() / pu.squaredNorm();
   const Eigen::VectorXd residual = values - pu * values;
   return eta * (residual - pu.transpose() * residual);
 }
@@ -154,8 +158,7 @@ VemIntegrals::VemIntegrals(const VemShape& shape, std::span<const Polygon> polyg
 }
 
 Eigen::MatrixXd VemIntegrals::stiffness(const Eigen::Matrix3d& d, double thickness) const {
-  const Eigen::MatrixXd pc = shape_.projector().bottomRows<3>();
-  const Eigen::MatrixXd consistency = (shape_.area() * thickness) * pc.transpose() * d * pc;
+  const Eigen::MatrixXd consistency = shape_.consistency_stiffness(d, thickness);
   const double eta = consistency.trace() / projection_trace_;
   return consistency + eta * stabilisation_;
 }

@@ -48,6 +48,10 @@ public:
   /// P_u (eq. 50): Pi_P u at the vertices, T*(x_i) H; 2n x 2n. It reproduces every linear
   /// field and is a projector (P_u² = P_u), so I - P_u vanishes exactly on linear fields.
   [[nodiscard]] Eigen::MatrixXd vertex_projection() const;
+  /// S t P_c^T D P_c (eq. 48): the consistency part of the stiffness, for @p elasticity D
+  /// and @p thickness t; 2n x 2n.
+  [[nodiscard]] Eigen::MatrixXd consistency_stiffness(const Eigen::Matrix3d& elasticity,
+                                                      double thickness) const;
   /// The stabilisation's vertex forces of the step displacement @p d:
   /// eta_E (I - P_u)^T (I - P_u) d (eq. 49), eta_E of eq. 52 with the elasticity matrix
   /// @p elasticity times @p thickness, as VemIntegrals::stiffness(); 2n values. The step
