@@ -262,10 +262,14 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   detection.distance = 2.0 * max_step_displacement;
   detection.penetration = 0.1 * detection.distance;
   held_open_penetration_ = 1e-3 * max_step_displacement;
+  // In the order of their keys, not of the hash table: which of two carried contacts a
+  // transfer finds first must not depend on the table's history (a restarted run has
+  // another), or a restart would not continue the run exactly.
   std::vector<std::uint64_t> keep;
   keep.reserve(carried_.size());
   for (const auto& [key, state] : carried_)
     keep.push_back(key);
+  std::sort(keep.begin(), keep.end());
   const std::vector<ContactCandidate> candidates =
       detect_contacts(boundary_, detection, keep, &counters_.detection);
 
@@ -273,7 +277,8 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   // contact whose slave moved on to the next edge (Shi 3.3).
   std::unordered_multimap<int, std::uint64_t> carried_by_slave;
   std::unordered_multimap<int, std::uint64_t> carried_by_master;
-  for (const auto& [key, state] : carried_) {
+  for (const std::uint64_t key : keep) {
+    const Carried& state = carried_.at(key);
     carried_by_slave.emplace(state.slave, key);
     carried_by_master.emplace(state.master, key);
   }
@@ -980,6 +985,91 @@ std::string ContactSystem::describe(int i) const {
   const Point2& b = boundary_.position[at(boundary_.next[at(p.master)])];
   return "contact of " + point_text(p.slave, 6) + " against the edge " + point_text(a, 6) + "-" +
          point_text(b, 6);
+}
+
+void ContactSystem::save_state(StateWriter& out) const {
+  out.section("CONT");
+  std::vector<std::uint64_t> keys;
+  keys.reserve(carried_.size());
+  for (const auto& [key, state] : carried_)
+    keys.push_back(key);
+  std::sort(keys.begin(), keys.end());
+  out.put_count(keys.size());
+  for (const std::uint64_t key : keys) {
+    const Carried& state = carried_.at(key);
+    out.put(static_cast<std::int64_t>(key));
+    out.put(static_cast<std::int64_t>(state.slave));
+    out.put(static_cast<std::int64_t>(state.master));
+    out.put(static_cast<std::int64_t>(state.mode));
+    out.put(static_cast<std::int64_t>(state.slide_sign));
+    out.put(state.normal);
+    out.put(state.offset);
+    out.put_count(state.anchors.size());
+    for (const auto& [u, anchor] : state.anchors) {
+      out.put(u);
+      out.put(anchor);
+    }
+  }
+  keys.clear();
+  for (const auto& [key, broken] : broken_) {
+    if (broken)
+      keys.push_back(key);
+  }
+  std::sort(keys.begin(), keys.end());
+  out.put_count(keys.size());
+  for (const std::uint64_t key : keys)
+    out.put(static_cast<std::int64_t>(key));
+  out.put(static_cast<std::int64_t>(counters_.points));
+  out.put(static_cast<std::int64_t>(counters_.chatter_holds));
+  out.put(static_cast<std::int64_t>(counters_.bonds_broken));
+  out.put(static_cast<std::int64_t>(counters_.detection.edge_pairs));
+  out.put(static_cast<std::int64_t>(counters_.detection.vertex_edge));
+  out.put(static_cast<std::int64_t>(counters_.detection.vertex_vertex));
+  out.put(static_cast<std::int64_t>(counters_.detection.edge_edge));
+}
+
+void ContactSystem::load_state(StateReader& in) {
+  in.section("CONT");
+  std::size_t n_edges = 0;
+  for (const auto& loop : strength_of_edge_)
+    n_edges += loop.size();
+  auto edge = [&](std::int64_t e) {
+    if (e < 0 || static_cast<std::size_t>(e) >= n_edges)
+      in.fail("a contact names edge " + std::to_string(e) + " of " + std::to_string(n_edges));
+    return static_cast<int>(e);
+  };
+  carried_.clear();
+  const std::size_t n = in.count();
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto key = static_cast<std::uint64_t>(in.integer());
+    Carried state;
+    state.slave = edge(in.integer());
+    state.master = edge(in.integer());
+    const std::int64_t mode = in.integer();
+    if (mode < 0 || mode > static_cast<std::int64_t>(ContactMode::lock))
+      in.fail("a contact mode of " + std::to_string(mode));
+    state.mode = static_cast<ContactMode>(mode);
+    state.slide_sign = static_cast<int>(in.integer());
+    state.normal = in.real();
+    state.offset = in.real();
+    state.anchors.resize(in.count());
+    for (auto& [u, anchor] : state.anchors) {
+      u = in.real();
+      anchor = in.real();
+    }
+    carried_[key] = std::move(state);
+  }
+  broken_.clear();
+  const std::size_t n_broken = in.count();
+  for (std::size_t k = 0; k < n_broken; ++k)
+    broken_[static_cast<std::uint64_t>(in.integer())] = true;
+  counters_.points = in.integer();
+  counters_.chatter_holds = in.integer();
+  counters_.bonds_broken = in.integer();
+  counters_.detection.edge_pairs = in.integer();
+  counters_.detection.vertex_edge = in.integer();
+  counters_.detection.vertex_vertex = in.integer();
+  counters_.detection.edge_edge = in.integer();
 }
 
 } // namespace nmm

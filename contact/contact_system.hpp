@@ -163,6 +163,12 @@ public:
   /// called with the step's final displacement, before the model moves.
   void end_step(const Model& model, const Eigen::VectorXd& raw);
 
+  /// Writes what carries over to the next step (the closed contacts' states, broken bonds,
+  /// counters) for a restart checkpoint; call between steps.
+  void save_state(StateWriter& out) const;
+  /// Reads what save_state() wrote; the next begin_step() continues from it.
+  void load_state(StateReader& in);
+
   /// Closed contact points now.
   [[nodiscard]] int n_closed() const;
   /// Largest penetration of a closed contact after the last solve, m.

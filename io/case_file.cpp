@@ -860,10 +860,6 @@ OutputSpec read_output(Context& context, const toml::table& root, const std::str
   }
   spec.every = view.small_integer_or("every", 1, 1, 100'000'000, "10");
   spec.checkpoint_every = view.small_integer_or("checkpoint_every", 0, 0, 100'000'000, "1000");
-  if (spec.checkpoint_every != 0)
-    view.fail_at_value("checkpoint_every", "[output] checkpoint_every is not yet supported "
-                                           "(restart checkpoints are planned); remove the line "
-                                           "or write checkpoint_every = 0");
   return spec;
 }
 

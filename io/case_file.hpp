@@ -191,7 +191,7 @@ struct OutputSpec {
   std::filesystem::path dir;
   /// Write the VTK files every this many steps, >= 1.
   int every = 1;
-  /// Write a checkpoint every this many steps, >= 0; 0 = never.
+  /// Write a restart checkpoint every this many steps, >= 0; 0 = only when the run stops.
   int checkpoint_every = 0;
 };
 

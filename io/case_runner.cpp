@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/case_runner.hpp"
 
+#include "io/checkpoint.hpp"
 #include "io/gmsh_reader.hpp"
 #include "io/step_output.hpp"
 #include "io/text.hpp"
@@ -551,6 +552,11 @@ void CaseAnalysis::equilibrate() {
     monitor_starts_[k] = stepper_->scene().monitors[k].position;
 }
 
+void CaseAnalysis::restore_monitor_starts(std::vector<Point2> starts) {
+  NMM_ASSERT(starts.size() == monitor_starts_.size(), "one start per monitor");
+  monitor_starts_ = std::move(starts);
+}
+
 std::vector<MonitorValues> CaseAnalysis::monitor_values() const {
   std::vector<MonitorValues> values;
   const std::vector<MaterialPoint>& monitors = stepper_->scene().monitors;
@@ -586,13 +592,20 @@ void create_output_dir(const fs::path& dir) {
 namespace {
 
 /// Creates the folder, removes step and contact files of an earlier run.
-void prepare_output_dir(const fs::path& dir) {
-  create_output_dir(dir);
+/// Removes the step and contact files of an earlier run in @p dir after step @p after (all
+/// with -1), and its checkpoint unless restarting (@p after >= 0).
+void remove_old_output(const fs::path& dir, long after) {
   std::error_code error;
-  static const std::regex old_output(R"((step_[0-9]{6,}\.vtu|contacts_[0-9]{6,}\.vtp)(\.tmp)?)");
+  static const std::regex old_output(
+      R"((?:step|contacts)_([0-9]{6,})\.(?:vtu|vtp)(?:\.tmp)?|checkpoint\.nmm(?:\.tmp)?)");
   std::vector<fs::path> old_files;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir, error)) {
-    if (std::regex_match(entry.path().filename().string(), old_output))
+    std::smatch match;
+    const std::string name = entry.path().filename().string();
+    if (!std::regex_match(name, match, old_output))
+      continue;
+    const bool checkpoint = !match[1].matched;
+    if (after < 0 || (!checkpoint && std::stol(match[1].str()) > after))
       old_files.push_back(entry.path());
   }
   for (const fs::path& file : old_files) {
@@ -613,7 +626,20 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   RunResult result;
   result.output_dir = output_dir_of(spec, options);
   const fs::path& dir = result.output_dir;
-  prepare_output_dir(dir);
+  const fs::path checkpoint_file = dir / checkpoint_file_name;
+  // Before the first step (and the initial equilibrium): what a checkpoint belongs to.
+  const std::uint64_t fingerprint = model_fingerprint(model);
+  const std::uint64_t case_hash = file_hash(spec.file);
+  std::vector<std::string> restart_warnings;
+  std::optional<CheckpointRun> restored;
+  if (options.restart) {
+    restored = read_checkpoint(checkpoint_file, stepper, fingerprint, case_hash, restart_warnings);
+    analysis.restore_monitor_starts(restored->monitor_starts);
+    remove_old_output(dir, restored->step);
+  } else {
+    create_output_dir(dir);
+    remove_old_output(dir, -1);
+  }
 
   RunSummary summary;
   summary.dofs = model.n_dofs();
@@ -626,14 +652,16 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   summary.mesher = analysis.geometry().covers.stats;
   const auto all_warnings = [&] {
     std::vector<std::string> warnings = analysis.warnings();
+    warnings.insert(warnings.end(), restart_warnings.begin(), restart_warnings.end());
     warnings.insert(warnings.end(), stepper.warnings().begin(), stepper.warnings().end());
     return warnings;
   };
+  const double wall_before = restored ? restored->wall_seconds : 0.0;
   const auto update_summary = [&](const std::string& status) {
     summary.status = status;
     summary.steps = stepper.counters().steps;
     summary.time = stepper.time();
-    summary.wall_seconds = options.seconds_before + seconds_since(start);
+    summary.wall_seconds = wall_before + options.seconds_before + seconds_since(start);
     summary.unknowns = stepper.n_unknowns();
     summary.step_cuts = stepper.counters().step_cuts;
     summary.counters = stepper.counters();
@@ -651,31 +679,63 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   std::vector<std::string> monitor_names;
   for (const MonitorSpec& m : spec.monitors)
     monitor_names.push_back(m.name);
-  HistoryWriter history(dir / "history.csv", monitor_names);
+  std::optional<HistoryWriter> history;
   PvdSeries pvd(dir / "case.pvd");
-  if (spec.analysis.initial_equilibrium)
-    analysis.equilibrate();
-  const std::vector<Point2> initial_points = step_points(model);
   long written = -1;
-  const auto write_step = [&](long step) {
-    const fs::path file = dir / step_file_name(step);
+  long step = 0;
+  std::vector<Point2> initial_points;
+  if (restored) {
+    history.emplace(dir / "history.csv", monitor_names, restored->history_bytes);
+    pvd.restore(restored->pvd);
+    initial_points = restored->initial_points;
+    if (initial_points.size() != step_points(model).size())
+      throw InputError(checkpoint_file.string() + " holds " +
+                       std::to_string(initial_points.size()) + " output points, the model has " +
+                       std::to_string(step_points(model).size()) +
+                       "; run the case from the start without --restart");
+    written = restored->written;
+    step = restored->step;
+    result.output_steps = restored->output_steps;
+    summary.max_penetration = restored->max_penetration;
+  } else {
+    history.emplace(dir / "history.csv", monitor_names);
+    if (spec.analysis.initial_equilibrium)
+      analysis.equilibrate();
+    initial_points = step_points(model);
+  }
+  const auto write_checkpoint_now = [&] {
+    CheckpointRun run;
+    run.step = step;
+    run.written = written;
+    run.output_steps = result.output_steps;
+    run.max_penetration = summary.max_penetration;
+    run.wall_seconds = wall_before + options.seconds_before + seconds_since(start);
+    run.history_bytes = history->bytes();
+    run.pvd = pvd.entries();
+    run.initial_points = initial_points;
+    run.monitor_starts = analysis.monitor_starts();
+    write_checkpoint(checkpoint_file, run, stepper, fingerprint, case_hash);
+  };
+  const auto write_step = [&](long number) {
+    const fs::path file = dir / step_file_name(number);
     write_vtu(file, make_step_data(model, initial_points, stepper.velocity(), stepper.time()));
     std::vector<fs::path> parts{file};
     if (const ContactSystem* contact = stepper.contact()) {
-      parts.push_back(dir / contact_file_name(step));
+      parts.push_back(dir / contact_file_name(number));
       write_vtp_points(parts.back(), make_contact_data(*contact, model, stepper.time()));
     }
     pvd.add(stepper.time(), parts);
-    written = step;
+    written = number;
     ++result.output_steps;
   };
 
   const long steps = spec.analysis.steps;
   const double end_time = spec.analysis.end_time.value_or(std::numeric_limits<double>::infinity());
   const long every = std::max(1, spec.output.every);
-  long step = 0;
+  const long checkpoint_every = spec.output.checkpoint_every;
   try {
-    write_step(0);
+    if (!restored)
+      write_step(0);
     while (step < steps) {
       if (stepper.time() >= end_time * (1.0 - 1e-12))
         break;
@@ -686,9 +746,11 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       const StepReport report = stepper.step(end_time);
       step = report.step;
       summary.max_penetration = std::max(summary.max_penetration, report.max_penetration);
-      history.write_row(report, analysis.monitor_values());
+      history->write_row(report, analysis.monitor_values());
       if (step % every == 0)
         write_step(step);
+      if (checkpoint_every > 0 && step % checkpoint_every == 0)
+        write_checkpoint_now();
       if (options.on_step) {
         RunProgress progress;
         progress.report = &report;
@@ -701,6 +763,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     }
     if (written != step)
       write_step(step);
+    write_checkpoint_now();
   } catch (const std::exception& error) {
     // Leave a readable record of how far the run got, then let the caller report it.
     try {

@@ -90,6 +90,8 @@ public:
   /// `[analysis] initial_equilibrium`: TimeStepper::equilibrate(), then the monitors count
   /// their displacement from the settled state. Before the first step.
   void equilibrate();
+  /// A restart: the monitors' starts of the interrupted run. @pre one per monitor.
+  void restore_monitor_starts(std::vector<Point2> starts);
 
 private:
   [[nodiscard]] std::unique_ptr<ContactSystem> make_contact_system(double penalty) const;
@@ -135,6 +137,10 @@ struct RunOptions {
   /// Wall time already spent before run_case() (reading the case, building the model), s;
   /// counted in summary.json's wall_seconds.
   double seconds_before = 0.0;
+  /// Continue the run whose output folder this is from its checkpoint.nmm (`nmm run CASE
+  /// --restart DIR`): the steps after it are taken again, exactly as the interrupted run
+  /// would have taken them; history.csv, case.pvd and the step files are continued.
+  bool restart = false;
 };
 
 /// What run_case() did.
@@ -157,11 +163,14 @@ struct RunResult {
 /// Writes into the output folder (docs/output.md): `step_NNNNNN.vtu` at step 0, every
 /// `[output] every` steps and at the last step; `case.pvd`, rewritten after each of them;
 /// `history.csv`, one row per step, flushed each row; `summary.json` with status "running"
-/// at the start and the final status at the end. Step and contact files of an earlier run
-/// (`step_*.vtu`, `contacts_*.vtp`) in the folder are removed first so that the folder
-/// holds one run.
+/// at the start and the final status at the end; `checkpoint.nmm` every `[output]
+/// checkpoint_every` steps and when the run stops (completed or interrupted; a failed
+/// step leaves the last one). Step and contact files and the checkpoint of an earlier run
+/// in the folder are removed first so that the folder holds one run, except with
+/// RunOptions::restart, which continues them from the checkpoint's step.
 /// @pre run_case() was not called on @p analysis before.
-/// @throws InputError naming the folder when it cannot be created or written.
+/// @throws InputError naming the folder when it cannot be created or written, or the
+///         checkpoint when a restart cannot continue from it (read_checkpoint()).
 /// @throws NumericalError (or anything else) when a step fails; the last completed step,
 ///         the .pvd and summary.json (status = the error message) are written first.
 RunResult run_case(CaseAnalysis& analysis, const RunOptions& options);

@@ -4,6 +4,7 @@
 // error, 130 interrupted).
 #include "io/case_file.hpp"
 #include "io/case_runner.hpp"
+#include "io/checkpoint.hpp"
 #include "io/cover_mesh_output.hpp"
 #include "io/demo.hpp"
 #include "io/dependency_info.hpp"
@@ -72,6 +73,8 @@ struct RunArguments {
   bool quiet = false;
   /// --steps: at most this many steps (0: the case's `[analysis] steps`).
   long steps = 0;
+  /// --restart: the output folder of the run to continue from its checkpoint.
+  std::string restart;
 };
 
 int run_command(const RunArguments& args, bool is_bundled_example) {
@@ -93,6 +96,17 @@ int run_command(const RunArguments& args, bool is_bundled_example) {
 
   nmm::RunOptions options;
   options.output_dir = args.output;
+  if (!args.restart.empty()) {
+    // The run continues in its own folder: its history, series and step files are there.
+    if (!args.output.empty() &&
+        fs::weakly_canonical(args.output) != fs::weakly_canonical(args.restart))
+      throw nmm::InputError("--restart " + args.restart +
+                            " continues the run in that folder; "
+                            "-o " +
+                            args.output + " names another: leave -o out");
+    options.output_dir = args.restart;
+    options.restart = true;
+  }
   options.stop = &stop_requested;
   options.on_step = [&](const nmm::RunProgress& progress) {
     printer.step(progress, progress.report->step == progress.steps);
@@ -100,8 +114,11 @@ int run_command(const RunArguments& args, bool is_bundled_example) {
   options.seconds_before = nmm::seconds_since(start);
   const fs::path dir = nmm::output_dir_of(analysis.spec(), options);
   std::ostringstream what;
-  what << "running " << steps << (steps == 1 ? " step" : " steps") << " ("
-       << analysis.model().n_dofs() << " unknowns); output in " << dir.string();
+  what << (options.restart
+               ? "continuing from " + (dir / nmm::checkpoint_file_name).string() + " up to step "
+               : std::string("running "))
+       << steps << (steps == 1 ? " step" : " steps") << " (" << analysis.model().n_dofs()
+       << " unknowns); output in " << dir.string();
   printer.phase(what.str());
 
   install_stop_handlers();
@@ -214,12 +231,14 @@ int run(int argc, char** argv) {
       "  nmm run slope.toml               run a case; results go to its [output] dir\n"
       "  nmm run slope.toml -o results --quiet --threads 2\n"
       "  nmm run slope.toml --steps 10    only the first 10 steps\n"
+      "  nmm run slope.toml --restart out continue the run in out/ from its last checkpoint\n"
       "  nmm mesh slope.toml -o mesh      write mesh.vtu, math_mesh.vtu, boundary.vtp only\n"
       "  nmm check slope.toml             read and check the case and its geometry, run nothing\n"
       "  nmm demo                         print Shi's simplex-integration tables\n"
       "  nmm --version                    versions of nmm and every library it uses\n"
       "\n"
-      "Outputs of run: case.pvd (open in ParaView), step_NNNNNN.vtu, history.csv, summary.json.\n"
+      "Outputs of run: case.pvd (open in ParaView), step_NNNNNN.vtu, history.csv, summary.json,\n"
+      "checkpoint.nmm (for --restart).\n"
       "Ctrl-C stops after the current step and still writes them (press twice to stop at once).\n"
       "Exit codes: 0 ok, 2 input error, 3 numerical failure, 4 internal error, 130 interrupted.");
 
@@ -233,6 +252,9 @@ int run(int argc, char** argv) {
       ->add_option("--steps", run_args.steps,
                    "Run at most N steps (fewer than [analysis] steps: a quick look)")
       ->check(CLI::Range(1L, 100'000'000L));
+  run_cmd->add_option("--restart", run_args.restart,
+                      "Continue the run whose output folder is DIR from its checkpoint.nmm "
+                      "(written when a run stops and every [output] checkpoint_every steps)");
 
   std::string mesh_case;
   std::string mesh_output;

@@ -92,6 +92,46 @@ HistoryWriter::HistoryWriter(std::filesystem::path file, std::vector<std::string
   const std::string header = history_header(monitor_names) + '\n';
   if (std::fputs(header.c_str(), stream_) < 0 || std::fflush(stream_) != 0)
     throw InputError("cannot write " + file_.string() + ": " + system_reason(errno));
+  bytes_ = header.size();
+}
+
+HistoryWriter::HistoryWriter(std::filesystem::path file,
+                             std::vector<std::string> monitor_names,
+                             std::uintmax_t keep_bytes)
+    : file_(std::move(file)), n_monitors_(monitor_names.size()), bytes_(keep_bytes) {
+  const std::string header = history_header(monitor_names) + '\n';
+  const auto fail = [&](const std::string& what) {
+    throw InputError("cannot continue " + file_.string() + " after the checkpoint: " + what +
+                     "; run the case from the start without --restart");
+  };
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(file_, error);
+  if (error)
+    fail(error.message());
+  if (size < keep_bytes || keep_bytes < header.size())
+    fail("it has " + std::to_string(size) + " bytes, the checkpoint's step ends at byte " +
+         std::to_string(keep_bytes));
+  {
+    std::FILE* in = std::fopen(file_.c_str(), "rb");
+    if (in == nullptr)
+      fail(system_reason(errno));
+    std::string head(header.size(), '\0');
+    const bool read = std::fread(head.data(), 1, head.size(), in) == head.size();
+    char last = 0;
+    const bool end = std::fseek(in, static_cast<long>(keep_bytes) - 1, SEEK_SET) == 0 &&
+                     std::fread(&last, 1, 1, in) == 1;
+    static_cast<void>(std::fclose(in));
+    if (!read || head != header)
+      fail("its header is not that of the case's monitors");
+    if (!end || last != '\n')
+      fail("no row ends at byte " + std::to_string(keep_bytes));
+  }
+  std::filesystem::resize_file(file_, keep_bytes, error);
+  if (error)
+    fail(error.message());
+  stream_ = std::fopen(file_.c_str(), "a");
+  if (stream_ == nullptr)
+    fail(system_reason(errno));
 }
 
 HistoryWriter::~HistoryWriter() {
@@ -104,15 +144,18 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
   int status =
       std::fprintf(stream_, "%ld,%.17g,%.17g,%d,%d,%.17g", report.step, report.time, report.dt,
                    report.open_close_iterations, report.contacts, report.kinetic_energy);
+  long written = status;
   for (const MonitorValues& monitor : monitors) {
     for (const double value : monitor.values()) {
       if (status >= 0)
-        status = std::fprintf(stream_, ",%.17g", value);
+        written += status = std::fprintf(stream_, ",%.17g", value);
     }
   }
   if (status >= 0)
-    status = std::fprintf(stream_, ",%.17g,%d,%.17g", report.load_work, report.step_cuts,
-                          report.max_penetration);
+    written += status = std::fprintf(stream_, ",%.17g,%d,%.17g", report.load_work, report.step_cuts,
+                                     report.max_penetration);
+  if (status >= 0)
+    bytes_ += static_cast<std::uintmax_t>(written) + 1;
   if (status < 0 || std::fputc('\n', stream_) == EOF || std::fflush(stream_) != 0)
     throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
                      "; is the disk full?");

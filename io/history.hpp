@@ -54,6 +54,14 @@ public:
   /// Creates (truncates) @p file and writes the header.
   /// @throws InputError naming the file when it cannot be written.
   HistoryWriter(std::filesystem::path file, std::vector<std::string> monitor_names);
+  /// Continues @p file after a restart: keeps its first @p keep_bytes bytes (the header and
+  /// the rows up to the checkpoint's step; bytes() when the checkpoint was written), drops
+  /// the rest (rows the interrupted run wrote after it) and appends after them.
+  /// @throws InputError naming the file when it is missing, shorter than @p keep_bytes,
+  ///         does not end a row there, or its header is not the one of @p monitor_names.
+  HistoryWriter(std::filesystem::path file,
+                std::vector<std::string> monitor_names,
+                std::uintmax_t keep_bytes);
   ~HistoryWriter();
   HistoryWriter(const HistoryWriter&) = delete;
   HistoryWriter& operator=(const HistoryWriter&) = delete;
@@ -65,10 +73,13 @@ public:
   void write_row(const StepReport& report, std::span<const MonitorValues> monitors);
 
   [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
+  /// Size of the file so far: header and every row written, bytes.
+  [[nodiscard]] std::uintmax_t bytes() const noexcept { return bytes_; }
 
 private:
   std::filesystem::path file_;
   std::size_t n_monitors_ = 0;
+  std::uintmax_t bytes_ = 0;
   std::FILE* stream_ = nullptr;
 };
 

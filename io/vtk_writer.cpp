@@ -508,6 +508,11 @@ void PvdSeries::add(double time, const std::vector<fs::path>& parts) {
   }
 }
 
+void PvdSeries::restore(std::vector<Entry> entries) {
+  entries_ = std::move(entries);
+  write();
+}
+
 void PvdSeries::write() const {
   write_file_atomically(pvd_file_, [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);

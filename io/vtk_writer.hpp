@@ -147,6 +147,10 @@ public:
   /// @throws InputError naming the .pvd when it cannot be written (nothing is added then).
   void add(double time, const std::vector<std::filesystem::path>& parts);
 
+  /// Replaces the series by @p entries (a restart: the steps written up to the checkpoint)
+  /// and rewrites the .pvd. @throws InputError as add().
+  void restore(std::vector<Entry> entries);
+
   [[nodiscard]] const std::filesystem::path& file() const noexcept { return pvd_file_; }
   [[nodiscard]] const std::vector<Entry>& entries() const noexcept { return entries_; }
 

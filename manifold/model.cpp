@@ -647,4 +647,73 @@ Model make_model(const CoverSystem& cover_system,
   return model;
 }
 
+void Model::save_state(StateWriter& out) const {
+  out.section("MODL");
+  out.put_count(covers.size());
+  for (const ModelCover& c : covers)
+    out.put(c.position);
+  out.put_count(elements.size());
+  for (const ModelElement& e : elements) {
+    out.put_count(e.polygons.size());
+    for (const Polygon& p : e.polygons) {
+      out.put(p.outer);
+      out.put_count(p.holes.size());
+      for (const Loop& hole : p.holes)
+        out.put(hole);
+    }
+    out.put(e.area);
+    out.put(e.stress.origin);
+    out.put(e.stress.coefficients);
+    out.put(e.stabilisation_force);
+  }
+  out.put_count(loops.size());
+  for (const BoundaryLoop& loop : loops)
+    out.put(loop.vertices);
+  out.put_count(curve_pieces.size());
+  for (const auto& pieces : curve_pieces) {
+    out.put_count(pieces.size());
+    for (const CurvePiece& piece : pieces) {
+      out.put(piece.a);
+      out.put(piece.b);
+    }
+  }
+}
+
+void Model::load_state(StateReader& in) {
+  in.section("MODL");
+  in.expect_count(covers.size(), "covers");
+  for (ModelCover& c : covers)
+    c.position = in.point();
+  in.expect_count(elements.size(), "elements");
+  for (ModelElement& e : elements) {
+    in.expect_count(e.polygons.size(), "polygons in an element");
+    for (Polygon& p : e.polygons) {
+      in.points_into(p.outer, "polygon vertices");
+      in.expect_count(p.holes.size(), "holes in a polygon");
+      for (Loop& hole : p.holes)
+        in.points_into(hole, "hole vertices");
+    }
+    e.area = in.real();
+    e.stress.origin = in.point();
+    e.stress.coefficients = in.matrix3();
+    e.stabilisation_force = in.vector();
+    if (e.stabilisation_force.size() != 0 &&
+        e.stabilisation_force.size() != static_cast<Eigen::Index>(e.dofs.size()))
+      in.fail("a VEM block's stabilisation force has " +
+              std::to_string(e.stabilisation_force.size()) + " values for " +
+              std::to_string(e.dofs.size()) + " unknowns");
+  }
+  in.expect_count(loops.size(), "boundary loops");
+  for (BoundaryLoop& loop : loops)
+    in.points_into(loop.vertices, "loop vertices");
+  in.expect_count(curve_pieces.size(), "named curves");
+  for (auto& pieces : curve_pieces) {
+    in.expect_count(pieces.size(), "curve pieces");
+    for (CurvePiece& piece : pieces) {
+      piece.a = in.point();
+      piece.b = in.point();
+    }
+  }
+}
+
 } // namespace nmm

@@ -10,6 +10,7 @@
 #include "manifold/nmm_element.hpp"
 #include "mesh/cover_system.hpp"
 #include "mesh/math_mesh.hpp"
+#include "mesh/state_archive.hpp"
 
 #include <Eigen/Core>
 
@@ -163,6 +164,13 @@ public:
   /// (a velocity or a displacement field; J turns by 90 degrees).
   void set_rigid_motion(
       int cover, const Point2& v0, double omega, const Point2& c, Eigen::VectorXd& raw) const;
+
+  /// Writes what the steps change (cover positions, element polygons, areas, stresses and
+  /// carried stabilisation forces, boundary loops, curve pieces) for a restart checkpoint.
+  void save_state(StateWriter& out) const;
+  /// Reads what save_state() wrote into a model built from the same case.
+  /// @throws InputError (StateReader) when a count differs: a checkpoint of another model.
+  void load_state(StateReader& in);
 
 private:
   int n_dofs_ = 0;

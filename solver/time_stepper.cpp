@@ -160,7 +160,14 @@ struct TimeStepper::Impl {
   /// their starts: what the current plans were made for, compared to the next step's.
   std::vector<int> coupling_start;
   std::vector<int> coupling_dofs;
+  /// The couplings the sparsity pattern was built from (the plans may have changed since
+  /// within it), for a restart checkpoint: the restored run rebuilds the same pattern, so
+  /// the same ordering and factor.
+  std::vector<int> pattern_start;
+  std::vector<int> pattern_dofs;
   bool analysed = false;
+  /// Solver counters of the run before a restart.
+  SolverCounters restored_counters;
 };
 
 TimeStepper::TimeStepper(Model& model,
@@ -217,7 +224,13 @@ TimeStepper::TimeStepper(Model& model,
 
 TimeStepper::~TimeStepper() = default;
 
-const SolverCounters& TimeStepper::solver_counters() const { return impl_->solver.counters(); }
+SolverCounters TimeStepper::solver_counters() const {
+  SolverCounters counters = impl_->solver.counters();
+  counters.symbolic_analyses += impl_->restored_counters.symbolic_analyses;
+  counters.factorizations += impl_->restored_counters.factorizations;
+  counters.solves += impl_->restored_counters.solves;
+  return counters;
+}
 
 int TimeStepper::n_unknowns() const { return impl_->pattern.n_dofs(); }
 
@@ -448,6 +461,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         (void)impl_->stiffness->plan(coupling(k));
       impl_->coupling_start = starts;
       impl_->coupling_dofs = flat;
+      impl_->pattern_start = starts;
+      impl_->pattern_dofs = flat;
       ++counters_.pattern_builds;
       rebuilt = true;
     }
@@ -714,6 +729,182 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   lap(clock, counters_.seconds_update);
   counters_.seconds_steps += std::chrono::duration<double>(clock - step_start).count();
   return report;
+}
+
+namespace {
+
+void save_point(StateWriter& out, const MaterialPoint& point) {
+  out.put(static_cast<std::int64_t>(point.element));
+  out.put(point.position);
+}
+
+void load_point(StateReader& in, MaterialPoint& point, int n_elements) {
+  const std::int64_t element = in.integer();
+  if (element < -1 || element >= n_elements)
+    in.fail("a material point in element " + std::to_string(element) + " of " +
+            std::to_string(n_elements));
+  point.element = static_cast<int>(element);
+  point.position = in.point();
+}
+
+std::vector<double*> time_counters(StepperCounters& c) {
+  return {&c.seconds_steps,           &c.seconds_step_control,  &c.seconds_detection,
+          &c.seconds_constraints,     &c.seconds_pattern,       &c.seconds_assembly,
+          &c.seconds_contact_springs, &c.seconds_analysis,      &c.seconds_factorization,
+          &c.seconds_solve,           &c.seconds_contact_modes, &c.seconds_update};
+}
+
+std::vector<long*> work_counters(StepperCounters& c) {
+  return {&c.steps,          &c.step_cuts,     &c.contact_searches,
+          &c.pattern_builds, &c.plan_rebuilds, &c.stress_updates};
+}
+
+} // namespace
+
+void TimeStepper::save_state(StateWriter& out) const {
+  model_.save_state(out);
+  out.section("STEP");
+  out.put(velocity_);
+  out.put(time_);
+  out.put(static_cast<std::int64_t>(step_));
+  StepperCounters counters = counters_;
+  for (const long* c : work_counters(counters))
+    out.put(static_cast<std::int64_t>(*c));
+  for (const double* c : time_counters(counters))
+    out.put(*c);
+  const SolverCounters solver = solver_counters();
+  out.put(static_cast<std::int64_t>(solver.symbolic_analyses));
+  out.put(static_cast<std::int64_t>(solver.factorizations));
+  out.put(static_cast<std::int64_t>(solver.solves));
+  out.put_count(warnings_.size());
+  for (const std::string& w : warnings_)
+    out.put(w);
+  out.put_count(scene_.supports.size());
+  for (const SupportPoint& s : scene_.supports)
+    save_point(out, s.point);
+  out.put_count(scene_.point_loads.size());
+  for (const PointLoad& l : scene_.point_loads)
+    save_point(out, l.point);
+  out.put_count(scene_.monitors.size());
+  for (const MaterialPoint& p : scene_.monitors)
+    save_point(out, p);
+  out.put(impl_->start_energy);
+  out.put(impl_->energy_started);
+  out.put(impl_->load_work);
+  // The last step's slaves: the next step's elimination prefers them (DofMap's previous).
+  std::vector<int> slaves;
+  if (impl_->map) {
+    for (int raw = 0; raw < impl_->map->n_raw(); ++raw) {
+      if (impl_->map->is_slave(raw))
+        slaves.push_back(raw);
+    }
+  }
+  out.put(impl_->map != nullptr);
+  out.put(slaves);
+  out.put(impl_->stiffness != nullptr);
+  if (impl_->stiffness) {
+    out.put(static_cast<std::int64_t>(impl_->pattern.n_dofs()));
+    out.put(impl_->pattern_start);
+    out.put(impl_->pattern_dofs);
+    out.put(impl_->coupling_start);
+    out.put(impl_->coupling_dofs);
+  }
+  out.put(impl_->contact != nullptr);
+  if (impl_->contact)
+    impl_->contact->save_state(out);
+}
+
+void TimeStepper::load_state(StateReader& in) {
+  NMM_ASSERT(step_ == 0 && counters_.steps == 0, "a checkpoint is loaded before the first step");
+  model_.load_state(in);
+  in.section("STEP");
+  velocity_ = in.vector();
+  if (velocity_.size() != model_.n_dofs())
+    in.fail("it has " + std::to_string(velocity_.size()) + " unknowns, the case has " +
+            std::to_string(model_.n_dofs()));
+  time_ = in.real();
+  step_ = static_cast<long>(in.integer());
+  for (long* c : work_counters(counters_))
+    *c = static_cast<long>(in.integer());
+  for (double* c : time_counters(counters_))
+    *c = in.real();
+  impl_->restored_counters.symbolic_analyses = static_cast<long>(in.integer());
+  impl_->restored_counters.factorizations = static_cast<long>(in.integer());
+  impl_->restored_counters.solves = static_cast<long>(in.integer());
+  warnings_.resize(in.count());
+  for (std::string& w : warnings_)
+    w = in.text();
+  in.expect_count(scene_.supports.size(), "support points");
+  for (SupportPoint& s : scene_.supports)
+    load_point(in, s.point, model_.n_elements());
+  in.expect_count(scene_.point_loads.size(), "point loads");
+  for (PointLoad& l : scene_.point_loads)
+    load_point(in, l.point, model_.n_elements());
+  in.expect_count(scene_.monitors.size(), "monitors");
+  for (MaterialPoint& p : scene_.monitors)
+    load_point(in, p, model_.n_elements());
+  impl_->start_energy = in.real();
+  impl_->energy_started = in.boolean();
+  impl_->load_work = in.real();
+  const bool had_map = in.boolean();
+  const std::vector<int> slaves = in.integers();
+  impl_->map.reset();
+  if (had_map) {
+    // A map whose only use is to be the next step's "previous": each saved slave is the
+    // preferred pivot of a row of its own, so exactly those are slaves.
+    std::vector<LinearConstraint> rows;
+    rows.reserve(slaves.size());
+    for (const int raw : slaves) {
+      if (raw < 0 || raw >= model_.n_dofs())
+        in.fail("a slave unknown " + std::to_string(raw) + " of " +
+                std::to_string(model_.n_dofs()));
+      rows.push_back(LinearConstraint{{{raw, 1.0}}, 0.0, raw, "restart"});
+    }
+    impl_->map = std::make_shared<const DofMap>(model_.n_dofs(), rows);
+  }
+  impl_->stiffness.reset();
+  impl_->analysed = false;
+  if (in.boolean()) {
+    const std::int64_t n = in.integer();
+    impl_->pattern_start = in.integers();
+    impl_->pattern_dofs = in.integers();
+    impl_->coupling_start = in.integers();
+    impl_->coupling_dofs = in.integers();
+    auto check = [&](const std::vector<int>& starts, const std::vector<int>& dofs) {
+      if (starts.empty() || starts.front() != 0 || !std::is_sorted(starts.begin(), starts.end()) ||
+          starts.back() != static_cast<int>(dofs.size()))
+        in.fail("the couplings of the sparsity pattern are inconsistent");
+      for (const int d : dofs) {
+        if (d < -1 || d >= n)
+          in.fail("the couplings of the sparsity pattern are inconsistent");
+      }
+    };
+    check(impl_->pattern_start, impl_->pattern_dofs);
+    check(impl_->coupling_start, impl_->coupling_dofs);
+    SparsityBuilder builder(static_cast<int>(n));
+    for (std::size_t k = 0; k + 1 < impl_->pattern_start.size(); ++k)
+      builder.add(std::span<const int>(impl_->pattern_dofs.data() + impl_->pattern_start[k],
+                                       at(impl_->pattern_start[k + 1] - impl_->pattern_start[k])));
+    impl_->pattern = builder.build();
+    impl_->stiffness = std::make_unique<Assembler>(impl_->pattern);
+    for (std::size_t k = 0; k + 1 < impl_->coupling_start.size(); ++k) {
+      const std::span<const int> dofs(impl_->coupling_dofs.data() + impl_->coupling_start[k],
+                                      at(impl_->coupling_start[k + 1] - impl_->coupling_start[k]));
+      for (const int i : dofs) {
+        for (const int j : dofs) {
+          if (i >= 0 && j >= i && !impl_->pattern.contains(i, j))
+            in.fail("a coupling lies outside the sparsity pattern");
+        }
+      }
+      (void)impl_->stiffness->plan(dofs);
+    }
+  }
+  const bool had_contact = in.boolean();
+  if (had_contact != (impl_->contact != nullptr))
+    in.fail(had_contact ? "it has contacts, the case cannot touch"
+                        : "it has no contacts, the case has");
+  if (impl_->contact)
+    impl_->contact->load_state(in);
 }
 
 } // namespace nmm

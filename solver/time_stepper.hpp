@@ -137,7 +137,8 @@ public:
   [[nodiscard]] double time() const noexcept { return time_; }
   [[nodiscard]] const Scene& scene() const noexcept { return scene_; }
   [[nodiscard]] const StepperCounters& counters() const noexcept { return counters_; }
-  [[nodiscard]] const SolverCounters& solver_counters() const;
+  /// The linear solver's counters, those of the run before a restart included.
+  [[nodiscard]] SolverCounters solver_counters() const;
   /// Number of unknowns of the linear system.
   [[nodiscard]] int n_unknowns() const;
   /// Velocity of the material at @p x in @p element.
@@ -154,6 +155,16 @@ public:
   [[nodiscard]] const ContactSystem* contact() const;
   /// The model size used for max_step_displacement (m).
   [[nodiscard]] double model_size() const noexcept { return model_size_; }
+
+  /// Writes everything the next step starts from (velocities, time, counters, warnings, the
+  /// moving support, load and monitor points, the energy budget, the last step's slaves and
+  /// sparsity pattern, the contact states) and the model's state, for a restart checkpoint:
+  /// a run restarted from it takes the same steps to the last bit (tests/regression
+  /// restart_test.cpp). Call between steps.
+  void save_state(StateWriter& out) const;
+  /// Reads what save_state() wrote into a stepper built for the same case, before its
+  /// first step. @throws InputError when the checkpoint is of another model.
+  void load_state(StateReader& in);
 
 private:
   struct Impl;

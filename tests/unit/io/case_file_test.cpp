@@ -333,7 +333,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "[analysis]\nkind = \"dynamic\"\nsteps = 50\npenalty_stiffness = 1e12\nopen_close_max = 20\n"
       "solver = \"cholmod\"\nmax_step_cuts = 0\nend_time = 2.5\nmax_step_displacement = 0.5\n"
       "initial_equilibrium = true\n"
-      "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 0\n";
+      "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 25\n";
   const CaseSpec spec = parse_case_text(text, "case.toml");
   EXPECT_EQ(spec.title, "Dam on a jointed foundation");
   EXPECT_EQ(spec.cover_mesh.kind, CoverMeshKind::gmsh);
@@ -358,7 +358,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_TRUE(spec.analysis.initial_equilibrium);
   EXPECT_EQ(spec.output.dir, fs::path("/tmp/dam"));
   EXPECT_EQ(spec.output.every, 5);
-  EXPECT_EQ(spec.output.checkpoint_every, 0);
+  EXPECT_EQ(spec.output.checkpoint_every, 25);
   // The only material is a VEM one, so the cover function order is unused.
   ASSERT_EQ(spec.warnings.size(), 1u);
   EXPECT_NE(spec.warnings[0].find("order has no effect"), std::string::npos) << spec.warnings[0];
@@ -577,8 +577,6 @@ std::vector<BadCase> bad_cases() {
       {"NegativeCheckpoint", minimal + "[output]\ncheckpoint_every = -1 # <-\n",
        "checkpoint_every = -1"},
       // accepted keys whose feature is not built yet: refused, never silently ignored
-      {"CheckpointNotYet", minimal + "[output]\ncheckpoint_every = 100 # <-\n",
-       "checkpoint_every is not yet supported"},
       {"PcgNotYet", minimal + "solver = \"pcg\" # <-\n", "solver = \"pcg\" is not yet supported"},
       // choices
       {"ChoiceSuggestsCase", minimal + "solver = \"Cholmod\" # <-\n",

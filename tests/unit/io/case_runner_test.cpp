@@ -379,5 +379,103 @@ TEST_F(CaseRunner, MeshGeometryResolvesOnlyMaterialsAndJoints) {
   EXPECT_GT(g.covers.n_elements(), 0);
 }
 
+// ---------------------------------------------------------------------------------------
+// Checkpoints and restart (the examples' bit-for-bit restarts: tests/regression/restart_test)
+
+/// The plate as a dynamic run of 7 steps with a checkpoint every 3.
+std::string dynamic_plate(int checkpoint_every) {
+  return replaced(replaced(plate_case, "kind = \"static\"\nsteps = 3",
+                           "kind = \"dynamic\"\nsteps = 7\ntime_step = 1.0e-3"),
+                  "every = 2", "every = 2\ncheckpoint_every = " + std::to_string(checkpoint_every));
+}
+
+TEST_F(CaseRunner, CheckpointEveryNStepsIsWrittenAfterThoseStepsAndWhenTheRunStops) {
+  CaseAnalysis analysis(read_case_file(case_file(dynamic_plate(3))));
+  const fs::path checkpoint = dir() / "out" / "checkpoint.nmm";
+  std::vector<std::string> seen; // the checkpoint's bytes after each step ("" when none)
+  RunOptions options;
+  options.on_step = [&](const RunProgress&) {
+    seen.push_back(fs::exists(checkpoint) ? read_text(checkpoint) : std::string());
+  };
+  static_cast<void>(run_case(analysis, options));
+  ASSERT_EQ(seen.size(), 7u);
+  EXPECT_TRUE(seen[0].empty() && seen[1].empty()) << "none before step 3";
+  EXPECT_FALSE(seen[2].empty());
+  EXPECT_EQ(seen[3], seen[2]) << "not rewritten at step 4";
+  EXPECT_EQ(seen[4], seen[2]);
+  EXPECT_NE(seen[5], seen[2]) << "rewritten at step 6";
+  EXPECT_NE(read_text(checkpoint), seen[5]) << "and when the run stops (step 7)";
+
+  // Restart from the step-3 checkpoint (as if the run had died at step 5): the same history.
+  const std::string history = read_text(dir() / "out" / "history.csv");
+  testing::write_text(checkpoint, seen[2]);
+  CaseAnalysis again(read_case_file(case_file(dynamic_plate(3))));
+  RunOptions restart;
+  restart.restart = true;
+  const RunResult result = run_case(again, restart);
+  EXPECT_EQ(result.steps, 7);
+  EXPECT_EQ(read_text(dir() / "out" / "history.csv"), history);
+}
+
+/// The message of the InputError a restart of @p text from the folder `out` throws.
+std::string restart_error(const fs::path& case_file) {
+  CaseAnalysis analysis(read_case_file(case_file));
+  RunOptions options;
+  options.restart = true;
+  try {
+    static_cast<void>(run_case(analysis, options));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return {};
+}
+
+TEST_F(CaseRunner, RestartWithoutACheckpointSaysWhereItLookedAndHowToGetOne) {
+  fs::create_directories(dir() / "out");
+  expect_all(restart_error(case_file(dynamic_plate(0))),
+             {(dir() / "out" / "checkpoint.nmm").string(), "no checkpoint", "--restart"});
+}
+
+TEST_F(CaseRunner, RestartFromADamagedCheckpointIsRefusedWithoutTouchingTheOutput) {
+  {
+    CaseAnalysis analysis(read_case_file(case_file(dynamic_plate(0))));
+    static_cast<void>(run_case(analysis, {}));
+  }
+  const fs::path out = dir() / "out";
+  const std::string good = read_text(out / "checkpoint.nmm");
+  const std::string history = read_text(out / "history.csv");
+  testing::write_text(out / "checkpoint.nmm", good.substr(0, good.size() / 2));
+  expect_all(restart_error(dir() / "case.toml"), {"checkpoint.nmm", "damaged", "from the start"});
+  testing::write_text(out / "checkpoint.nmm", "<?xml version=\"1.0\"?>");
+  expect_all(restart_error(dir() / "case.toml"), {"is not a checkpoint"});
+  std::string flipped = good;
+  flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x55);
+  testing::write_text(out / "checkpoint.nmm", flipped);
+  expect_all(restart_error(dir() / "case.toml"), {"checkpoint.nmm", "damaged"});
+  EXPECT_EQ(read_text(out / "history.csv"), history) << "a refused restart changes nothing";
+}
+
+TEST_F(CaseRunner, RestartOfAnotherModelIsRefusedAndAnEditedCaseIsWarnedAbout) {
+  {
+    CaseAnalysis analysis(read_case_file(case_file(dynamic_plate(0))));
+    RunOptions options;
+    static_cast<void>(run_case(analysis, options));
+  }
+  // Another cover size: another model.
+  expect_all(restart_error(case_file(replaced(dynamic_plate(0), "size = 0.3", "size = 0.25"))),
+             {"checkpoint.nmm", "another model", "without --restart"});
+  // More steps: the same model, continued, with a warning that the case changed.
+  CaseAnalysis analysis(
+      read_case_file(case_file(replaced(dynamic_plate(0), "steps = 7", "steps = 9"))));
+  RunOptions options;
+  options.restart = true;
+  const RunResult result = run_case(analysis, options);
+  EXPECT_EQ(result.steps, 9);
+  EXPECT_EQ(lines_of(read_text(dir() / "out" / "history.csv")).size(), 10u);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  expect_all(result.warnings[0], {"case file changed since the checkpoint"});
+}
+
 } // namespace
 } // namespace nmm
