@@ -42,6 +42,9 @@ EXAMPLES = [
     ("12_tunnel_36_blocks/case_phi0.toml", 10),
     ("13_block_wall_70/case.toml", 20),
     ("13_block_wall_70/case_vem.toml", 20),
+    ("14_single_joint_in_triangle/case.toml", 50),
+    ("15_circular_sliding/case.toml", 20),
+    ("16_jointed_double_cantilever/case.toml", 5),
 ]
 
 
