@@ -591,7 +591,6 @@ void create_output_dir(const fs::path& dir) {
 
 namespace {
 
-/// Creates the folder, removes step and contact files of an earlier run.
 /// Removes the step and contact files of an earlier run in @p dir after step @p after (all
 /// with -1), and its checkpoint unless restarting (@p after >= 0).
 void remove_old_output(const fs::path& dir, long after) {
@@ -630,11 +629,25 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   // Before the first step (and the initial equilibrium): what a checkpoint belongs to.
   const std::uint64_t fingerprint = model_fingerprint(model);
   const std::uint64_t case_hash = file_hash(spec.file);
+  std::vector<std::string> monitor_names;
+  for (const MonitorSpec& m : spec.monitors)
+    monitor_names.push_back(m.name);
   std::vector<std::string> restart_warnings;
   std::optional<CheckpointRun> restored;
+  std::optional<HistoryWriter> history;
   if (options.restart) {
+    // Everything is checked before anything in the folder changes.
     restored = read_checkpoint(checkpoint_file, stepper, fingerprint, case_hash, restart_warnings);
+    const std::size_t n_points = step_points(model).size();
+    if (restored->initial_points.size() != n_points ||
+        restored->monitor_starts.size() != spec.monitors.size())
+      throw InputError(
+          checkpoint_file.string() + " holds " + std::to_string(restored->initial_points.size()) +
+          " output points and " + std::to_string(restored->monitor_starts.size()) +
+          " monitors, the case has " + std::to_string(n_points) + " and " +
+          std::to_string(spec.monitors.size()) + "; run the case from the start without --restart");
     analysis.restore_monitor_starts(restored->monitor_starts);
+    history.emplace(dir / "history.csv", monitor_names, restored->history_bytes);
     remove_old_output(dir, restored->step);
   } else {
     create_output_dir(dir);
@@ -676,23 +689,13 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   update_summary("running");
   write_summary_json(summary_file, summary); // also proves the folder writable
 
-  std::vector<std::string> monitor_names;
-  for (const MonitorSpec& m : spec.monitors)
-    monitor_names.push_back(m.name);
-  std::optional<HistoryWriter> history;
   PvdSeries pvd(dir / "case.pvd");
   long written = -1;
   long step = 0;
   std::vector<Point2> initial_points;
   if (restored) {
-    history.emplace(dir / "history.csv", monitor_names, restored->history_bytes);
     pvd.restore(restored->pvd);
     initial_points = restored->initial_points;
-    if (initial_points.size() != step_points(model).size())
-      throw InputError(checkpoint_file.string() + " holds " +
-                       std::to_string(initial_points.size()) + " output points, the model has " +
-                       std::to_string(step_points(model).size()) +
-                       "; run the case from the start without --restart");
     written = restored->written;
     step = restored->step;
     result.output_steps = restored->output_steps;
