@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -30,6 +31,14 @@ std::uint64_t fnv1a(std::string_view bytes) {
   return hash;
 }
 
+/// The bytes of @p file, or nothing when it cannot be read.
+std::optional<std::string> read_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in)
+    return std::nullopt;
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 std::string hex(std::uint64_t value) {
   std::ostringstream out;
   out << std::hex << value;
@@ -47,11 +56,8 @@ std::uint64_t model_fingerprint(const Model& model) {
 }
 
 std::uint64_t file_hash(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    return 0;
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return fnv1a(bytes);
+  const std::optional<std::string> bytes = read_bytes(file);
+  return bytes ? fnv1a(*bytes) : 0;
 }
 
 void write_checkpoint(const fs::path& file,
@@ -97,15 +103,14 @@ CheckpointRun read_checkpoint(const fs::path& file,
                               std::uint64_t case_hash,
                               std::vector<std::string>& warnings) {
   const std::string name = file.string();
-  std::ifstream stream(file, std::ios::binary);
-  if (!stream) {
+  const std::optional<std::string> read = read_bytes(file);
+  if (!read) {
     throw InputError("no checkpoint " + name +
                      " to restart from: a run writes it when it stops (completed, interrupted "
                      "or by --steps) and every [output] checkpoint_every steps; give the "
                      "output folder of such a run to --restart");
   }
-  const std::string bytes((std::istreambuf_iterator<char>(stream)),
-                          std::istreambuf_iterator<char>());
+  const std::string& bytes = *read;
   if (bytes.compare(0, magic.size(), magic) != 0)
     throw InputError(name +
                      " is not a checkpoint of this version of nmm (it does not start "
