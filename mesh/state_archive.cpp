@@ -9,7 +9,8 @@
 namespace nmm {
 
 void StateWriter::raw(const void* data, std::size_t size) {
-  bytes_.append(static_cast<const char*>(data), size);
+  if (size > 0) // an empty Eigen vector's data() is null
+    bytes_.append(static_cast<const char*>(data), size);
 }
 
 void StateWriter::section(std::string_view tag) {
@@ -67,6 +68,8 @@ void StateReader::fail(const std::string& message) const {
 void StateReader::raw(void* data, std::size_t size) {
   if (bytes_.size() - position_ < size)
     fail("the checkpoint ends early (" + std::to_string(bytes_.size()) + " bytes)");
+  if (size == 0)
+    return; // an empty Eigen vector's data() is null, which memcpy must not get
   std::memcpy(data, bytes_.data() + position_, size);
   position_ += size;
 }

@@ -29,6 +29,7 @@ TEST(StateArchive, EveryValueReadsBackBitForBit) {
   Eigen::VectorXd v(3);
   v << 1.0, -0.0, 1e300;
   out.put(v);
+  out.put(Eigen::VectorXd()); // empty: a block without a carried force
   Eigen::Matrix3d m = Eigen::Matrix3d::Random();
   out.put(m);
   out.put(std::vector<int>{3, -1, 7});
@@ -49,6 +50,7 @@ TEST(StateArchive, EveryValueReadsBackBitForBit) {
   EXPECT_EQ(w(1), 0.0);
   EXPECT_TRUE(std::signbit(w(1))) << "-0 stays -0";
   EXPECT_EQ(w(2), 1e300);
+  EXPECT_EQ(in.vector().size(), 0);
   EXPECT_EQ(in.matrix3(), m);
   EXPECT_EQ(in.integers(), (std::vector<int>{3, -1, 7}));
   std::vector<Point2> points(2);
