@@ -67,7 +67,7 @@ void StateReader::fail(const std::string& message) const {
 
 void StateReader::raw(void* data, std::size_t size) {
   if (bytes_.size() - position_ < size)
-    fail("the checkpoint ends early (" + std::to_string(bytes_.size()) + " bytes)");
+    fail_short();
   if (size == 0)
     return; // an empty Eigen vector's data() is null, which memcpy must not get
   std::memcpy(data, bytes_.data() + position_, size);
@@ -107,6 +107,17 @@ Point2 StateReader::point() {
   return {x, real()};
 }
 
+void StateReader::fail_short() const {
+  fail("the checkpoint ends early (" + std::to_string(bytes_.size()) + " bytes)");
+}
+
+std::size_t StateReader::count_of(std::size_t bytes_each) {
+  const std::size_t n = count();
+  if (n > (bytes_.size() - position_) / bytes_each)
+    fail_short(); // before allocating for them
+  return n;
+}
+
 std::size_t StateReader::count() {
   const std::int64_t n = integer();
   if (n < 0 || n >= (std::int64_t{1} << 40))
@@ -115,16 +126,14 @@ std::size_t StateReader::count() {
 }
 
 std::string StateReader::text() {
-  const std::size_t n = count();
+  const std::size_t n = count_of(1);
   std::string text(n, '\0');
   raw(text.data(), n);
   return text;
 }
 
 Eigen::VectorXd StateReader::vector() {
-  const std::size_t n = count();
-  if (n > (bytes_.size() - position_) / sizeof(double))
-    fail("the checkpoint ends early (" + std::to_string(bytes_.size()) + " bytes)");
+  const std::size_t n = count_of(sizeof(double));
   Eigen::VectorXd values(static_cast<Eigen::Index>(n));
   raw(values.data(), sizeof(double) * n);
   return values;
@@ -137,9 +146,7 @@ Eigen::Matrix3d StateReader::matrix3() {
 }
 
 std::vector<int> StateReader::integers() {
-  const std::size_t n = count();
-  if (n > (bytes_.size() - position_) / 8)
-    fail("the checkpoint ends early (" + std::to_string(bytes_.size()) + " bytes)");
+  const std::size_t n = count_of(sizeof(std::int64_t));
   std::vector<int> values(n);
   for (int& v : values)
     v = static_cast<int>(integer());
@@ -147,9 +154,7 @@ std::vector<int> StateReader::integers() {
 }
 
 std::vector<Point2> StateReader::points() {
-  const std::size_t n = count();
-  if (n > (bytes_.size() - position_) / 16)
-    fail("the checkpoint ends early (" + std::to_string(bytes_.size()) + " bytes)");
+  const std::size_t n = count_of(2 * sizeof(double));
   std::vector<Point2> points(n);
   for (Point2& p : points)
     p = point();

@@ -74,6 +74,9 @@ public:
 
 private:
   void raw(void* data, std::size_t size);
+  /// A count of items of @p bytes_each bytes that the rest of the stream must hold.
+  std::size_t count_of(std::size_t bytes_each);
+  [[noreturn]] void fail_short() const;
   std::string_view bytes_;
   std::size_t position_ = 0;
   std::string what_;

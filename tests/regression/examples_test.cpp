@@ -120,7 +120,7 @@ TEST_F(Example, JointedDoubleCantileverLayersEachCarryHalfTheLoad) {
   const double slip = h * 0.5 * q * std::pow(length, 3) / (6.0 * young * inertia);
   // Measured: -0.090% (upper layer), -0.038% (lower), slip -0.08%. The formula holds the end
   // section at its axis; holding the whole end (as here) stiffens it a little (-1% in
-  // examples/01, whose beam is four times stubbier per depth), and the shear factor is
+  // examples/01, whose length is 5 depths against the layers' 20), and the shear factor is
   // uncertain by 25% of 0.25% (Timoshenko-Goodier's 3/2 against 6/5): 0.3% covers both.
   for (const char* tip : {"upper_tip", "lower_tip"})
     EXPECT_NEAR(example.monitor(tip, "uy"), -deflection, 3e-3 * deflection) << tip;
