@@ -591,12 +591,12 @@ void create_output_dir(const fs::path& dir) {
 
 namespace {
 
-/// Removes the step and contact files of an earlier run in @p dir after step @p after (all
-/// with -1), and its checkpoint unless restarting (@p after >= 0).
+/// Removes the step, contact and boundary files of an earlier run in @p dir after step @p after
+/// (all with -1), and its checkpoint unless restarting (@p after >= 0).
 void remove_old_output(const fs::path& dir, long after) {
   std::error_code error;
   static const std::regex old_output(
-      R"((?:step|contacts)_([0-9]{6,})\.(?:vtu|vtp)(?:\.tmp)?|checkpoint\.nmm(?:\.tmp)?)");
+      R"((?:step|contacts|boundary)_([0-9]{6,})\.(?:vtu|vtp)(?:\.tmp)?|checkpoint\.nmm(?:\.tmp)?)");
   std::vector<fs::path> old_files;
   for (const fs::directory_entry& entry : fs::directory_iterator(dir, error)) {
     std::smatch match;
@@ -726,6 +726,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     if (const ContactSystem* contact = stepper.contact()) {
       parts.push_back(dir / contact_file_name(number));
       write_vtp_points(parts.back(), make_contact_data(*contact, model, stepper.time()));
+      parts.push_back(dir / boundary_file_name(number));
+      write_vtp_lines(parts.back(), make_boundary_step_data(model, stepper.time()));
     }
     pvd.add(stepper.time(), parts);
     written = number;

@@ -93,13 +93,13 @@ void write_math_mesh_vtu(const std::filesystem::path& file,
   write_vtu(file, make_math_mesh_data(mesh, covers));
 }
 
-PolylineData make_boundary_data(const CoverSystem& covers) {
+PolylineData make_boundary_data(std::span<const BoundaryLoop> loops) {
   PolylineData data;
   std::vector<std::int32_t> block;
   std::vector<std::int32_t> joint;
   std::vector<std::int32_t> loop_id;
-  for (int l = 0; l < covers.n_loops(); ++l) {
-    const BoundaryLoop& loop = covers.loops[static_cast<std::size_t>(l)];
+  for (std::size_t l = 0; l < loops.size(); ++l) {
+    const BoundaryLoop& loop = loops[l];
     const int n = loop.n_vertices();
     if (n < 2)
       continue;
@@ -126,7 +126,7 @@ PolylineData make_boundary_data(const CoverSystem& covers) {
       data.lines.push_back(std::move(line));
       block.push_back(loop.block);
       joint.push_back(run_joint);
-      loop_id.push_back(l);
+      loop_id.push_back(static_cast<std::int32_t>(l));
     }
   }
   data.cell_data.add("block", std::move(block))
@@ -136,7 +136,7 @@ PolylineData make_boundary_data(const CoverSystem& covers) {
 }
 
 void write_boundary_vtp(const std::filesystem::path& file, const CoverSystem& covers) {
-  write_vtp_lines(file, make_boundary_data(covers));
+  write_vtp_lines(file, make_boundary_data(covers.loops));
 }
 
 } // namespace nmm

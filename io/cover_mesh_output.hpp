@@ -9,6 +9,7 @@
 #include "mesh/math_mesh.hpp"
 
 #include <filesystem>
+#include <span>
 
 namespace nmm {
 
@@ -37,13 +38,14 @@ void write_math_mesh_vtu(const std::filesystem::path& file,
                          const MathMesh& mesh,
                          const CoverSystem* covers = nullptr);
 
-/// The boundary loops of @p covers as polylines: each loop is cut into maximal runs of edges
-/// on the same joint, one polyline per run (a loop on one joint throughout is one closed
-/// polyline). Cell data (Int32): `block`, `joint` (PhysicalMesh::curves index of the joint,
-/// -1 on a free boundary), `loop` (CoverSystem::loops index).
-[[nodiscard]] PolylineData make_boundary_data(const CoverSystem& covers);
+/// Boundary loops (CoverSystem::loops as meshed, or Model::loops where they are now) as
+/// polylines: each loop is cut into maximal runs of edges on the same joint, one polyline per
+/// run (a loop on one joint throughout is one closed polyline). Cell data (Int32): `block`,
+/// `joint` (PhysicalMesh::curves index of the joint, -1 on a free boundary), `loop` (index
+/// in @p loops).
+[[nodiscard]] PolylineData make_boundary_data(std::span<const BoundaryLoop> loops);
 
-/// Writes make_boundary_data(@p covers) to @p file (e.g. `boundary.vtp`): the joints and
+/// Writes make_boundary_data(@p covers.loops) to @p file (e.g. `boundary.vtp`): the joints and
 /// free boundaries drawn as lines in ParaView.
 /// @throws InputError naming the file or directory when it cannot be written.
 void write_boundary_vtp(const std::filesystem::path& file, const CoverSystem& covers);

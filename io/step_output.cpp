@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/step_output.hpp"
 
+#include "io/cover_mesh_output.hpp"
 #include "manifold/simplex_integration.hpp"
 #include "mesh/error.hpp"
 #include "mesh/geometry.hpp"
@@ -11,6 +12,16 @@
 #include <utility>
 
 namespace nmm {
+namespace {
+
+/// `PREFIX_NNNNNN.EXTENSION`: the step number with at least 6 digits.
+std::string numbered_file_name(const char* prefix, long step, const char* extension) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s_%06ld.%s", prefix, step, extension);
+  return name;
+}
+
+} // namespace
 
 PrincipalStress principal_stress(const Eigen::Vector3d& stress) {
   const double mean = 0.5 * (stress(0) + stress(1));
@@ -152,16 +163,16 @@ PointCloudData make_contact_data(const ContactSystem& contact, const Model& mode
   return data;
 }
 
-std::string contact_file_name(long step) {
-  char name[40];
-  std::snprintf(name, sizeof name, "contacts_%06ld.vtp", step);
-  return name;
+PolylineData make_boundary_step_data(const Model& model, double time) {
+  PolylineData data = make_boundary_data(model.loops);
+  data.field_data.add_value("TimeValue", time);
+  return data;
 }
 
-std::string step_file_name(long step) {
-  char name[40];
-  std::snprintf(name, sizeof name, "step_%06ld.vtu", step);
-  return name;
-}
+std::string contact_file_name(long step) { return numbered_file_name("contacts", step, "vtp"); }
+
+std::string boundary_file_name(long step) { return numbered_file_name("boundary", step, "vtp"); }
+
+std::string step_file_name(long step) { return numbered_file_name("step", step, "vtu"); }
 
 } // namespace nmm

@@ -66,4 +66,13 @@ make_contact_data(const ContactSystem& contact, const Model& model, double time)
 /// `contacts_NNNNNN.vtp`: the step number with at least 6 digits.
 [[nodiscard]] std::string contact_file_name(long step);
 
+/// The joints and free boundaries of every block at their current position as polylines
+/// for write_vtp_lines() (make_boundary_data() of Model::loops): both faces of an opening or
+/// sliding joint are drawn, each moving with its own block. Cell data `block`, `joint`
+/// (named curve, -1 on a free boundary), `loop`; field data `TimeValue` (s).
+[[nodiscard]] PolylineData make_boundary_step_data(const Model& model, double time);
+
+/// `boundary_NNNNNN.vtp`: the step number with at least 6 digits.
+[[nodiscard]] std::string boundary_file_name(long step);
+
 } // namespace nmm

@@ -11,7 +11,8 @@ ParaView and the build's VTK cannot be installed together, use scripts/render_ro
         --points out/case.pvd
 
 The last time step of a .pvd series is shown, its part 0 (nmm's elements); a .pvd given to
---points gives the last step's part 1 (nmm's contact points). Cell and point arrays are both
+--points gives the last step's part 1 (nmm's contact points), to --lines its part 2 (the
+joints and boundaries where they are at that step). Cell and point arrays are both
 looked up by name. The known nmm fields get a legend with their unit (stresses in kPa or MPa
 when large; --range stays in SI units). nmm's step files hold the deformed positions:
 --magnify N draws the displacements N times their size; --warp F moves the points by F times
@@ -76,9 +77,9 @@ def parse():
     parser.add_argument("--outline", action="store_true",
                         help="draw the outline of the blocks (the boundary of merged cells)")
     parser.add_argument("--lines", action="append", default=[],
-                        help=".vtp of lines (joints, boundaries) drawn on top in black, or a "
-                             ".vtu whose outline is drawn in grey (e.g. step_000000.vtu: the "
-                             "start); may be repeated")
+                        help=".vtp (or .pvd: its part 2) of lines (joints, boundaries) drawn on "
+                             "top in black, or a .vtu whose outline is drawn in grey (e.g. "
+                             "step_000000.vtu: the start); may be repeated")
     parser.add_argument("--points", default="",
                         help=".vtp (or .pvd: its part 1) of points (contacts) drawn on top")
     parser.add_argument("--points-color", default="state",
@@ -323,7 +324,7 @@ def main():
     if title and args.legend != "none":
         legends.append((pv.GetColorTransferFunction(display.ColorArrayName[1]), title))
     for path in args.lines:
-        lines = open_data(path)
+        lines = open_data(path, part=2)
         if path.lower().endswith(".vtu"):  # e.g. the start of a run, drawn over the last step
             draw_lines(view, outline(lines), lift, [0.55, 0.55, 0.55], 2.0)
         else:

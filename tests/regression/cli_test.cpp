@@ -246,7 +246,49 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
     // at most 6.8e-4 of m g over the output steps; 2e-3 m g leaves a factor 3.
     EXPECT_NEAR(total, 1250.0 * 9.81 * std::sqrt(0.5), 2e-3 * 1250.0 * 9.81) << entry.file;
   }
-  EXPECT_EQ(2 * contact_files, static_cast<int>(series.size()));
+  EXPECT_EQ(3 * contact_files, static_cast<int>(series.size()));
+
+  // Every step file has its boundary file too (part 2): the joints and free boundaries as
+  // lines at their current position, at the step's time. The loops are the mesh's, moved:
+  // same lines in every file; the block's loop has slid with the block, the held ramp's has
+  // not. Between the first and the last file the farthest boundary point moved the block's
+  // distance (the block is rigid but for its elastic squeeze under its weight, 2e-6 m at
+  // E = 1e9 Pa: 1e-5 of it), the nearest hardly at all (the ramp's loop sinks 1e-6 m).
+  std::vector<vtkSmartPointer<vtkPolyData>> boundaries;
+  for (const PvdEntry& entry : series) {
+    if (entry.file.rfind("boundary_", 0) != 0)
+      continue;
+    EXPECT_EQ(entry.part, 2) << entry.file;
+    boundaries.push_back(read_vtp(out / entry.file));
+    vtkPolyData& lines = *boundaries.back();
+    ASSERT_GT(lines.GetNumberOfLines(), 0) << entry.file;
+    expect_finite_array(lines.GetCellData(), "block", 1, lines.GetNumberOfCells());
+    expect_finite_array(lines.GetCellData(), "joint", 1, lines.GetNumberOfCells());
+    expect_finite_array(lines.GetCellData(), "loop", 1, lines.GetNumberOfCells());
+    vtkDataArray* time = lines.GetFieldData()->GetArray("TimeValue");
+    ASSERT_NE(time, nullptr) << entry.file;
+    EXPECT_DOUBLE_EQ(time->GetComponent(0, 0), entry.time) << entry.file;
+  }
+  ASSERT_EQ(static_cast<int>(boundaries.size()), contact_files);
+  vtkPolyData& first = *boundaries.front();
+  vtkPolyData& final = *boundaries.back();
+  ASSERT_EQ(final.GetNumberOfPoints(), first.GetNumberOfPoints());
+  ASSERT_EQ(final.GetNumberOfLines(), first.GetNumberOfLines());
+  double farthest = 0.0;
+  double nearest = 1e300;
+  for (vtkIdType k = 0; k < final.GetNumberOfPoints(); ++k) {
+    double a[3];
+    double b[3];
+    first.GetPoint(k, a);
+    final.GetPoint(k, b);
+    const double moved = std::hypot(b[0] - a[0], b[1] - a[1]);
+    farthest = std::max(farthest, moved);
+    nearest = std::min(nearest, moved);
+  }
+  EXPECT_NEAR(farthest, slid, 1e-5 * slid);
+  EXPECT_LT(nearest, 1e-5);
+  vtkDataArray* joint = final.GetCellData()->GetArray("joint");
+  EXPECT_GT(joint->GetRange()[1], -1.0) << "the ramp's joint is drawn";
 
   // summary.json's step times (docs/output.md): the parts are laps of one clock, so they add
   // up to seconds_steps. Each is written with 6 significant digits (relative rounding at
@@ -301,9 +343,8 @@ TEST_F(Cli, OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) {
         0.5 * 9.81 * 0.25 * (std::sqrt(0.5) - std::tan(M_PI / 6.0) * std::sqrt(0.5));
     EXPECT_NEAR(slid, exact, 1e-4 * exact) << model;
     const std::vector<PvdEntry> series = read_pvd(out / "case.pvd");
-    auto step_file = std::find_if(series.rbegin(), series.rend(), [](const PvdEntry& e) {
-      return e.file.rfind("contacts_", 0) != 0;
-    });
+    auto step_file =
+        std::find_if(series.rbegin(), series.rend(), [](const PvdEntry& e) { return e.part == 0; });
     ASSERT_NE(step_file, series.rend());
     const vtkSmartPointer<vtkUnstructuredGrid> grid = read_vtu(out / step_file->file);
     vtkDataArray* kinds = grid->GetCellData()->GetArray("kind");

@@ -340,11 +340,13 @@ TEST_F(CaseRunner, StepFilesOfAnEarlierRunAreRemovedAndOthersKept) {
   fs::create_directories(out);
   testing::write_text(out / "step_000099.vtu", "old");
   testing::write_text(out / "contacts_000099.vtp", "old");
+  testing::write_text(out / "boundary_000099.vtp", "old");
   testing::write_text(out / "notes.txt", "mine");
   CaseAnalysis analysis(read_case_file(case_file(plate_case)));
   static_cast<void>(run_case(analysis, {}));
   EXPECT_FALSE(fs::exists(out / "step_000099.vtu"));
   EXPECT_FALSE(fs::exists(out / "contacts_000099.vtp"));
+  EXPECT_FALSE(fs::exists(out / "boundary_000099.vtp"));
   EXPECT_TRUE(fs::exists(out / "notes.txt"));
 }
 

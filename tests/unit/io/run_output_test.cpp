@@ -209,6 +209,8 @@ TEST(StepOutput, StepFileNamesHaveSixDigitsAtLeast) {
   EXPECT_EQ(step_file_name(0), "step_000000.vtu");
   EXPECT_EQ(step_file_name(123), "step_000123.vtu");
   EXPECT_EQ(step_file_name(12345678), "step_12345678.vtu");
+  EXPECT_EQ(contact_file_name(7), "contacts_000007.vtp");
+  EXPECT_EQ(boundary_file_name(1234567), "boundary_1234567.vtp");
 }
 
 TEST(StepOutput, EveryArrayHasOneTuplePerPointOrCellAndTheStartHasNoDisplacement) {
