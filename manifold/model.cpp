@@ -6,10 +6,12 @@
 #include "mesh/union_find.hpp"
 
 #include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -171,12 +173,6 @@ int Model::find_element(const Point2& x, double tolerance) const {
 
 std::vector<LinearConstraint> Model::extension_relations() const {
   std::vector<LinearConstraint> relations;
-  // One reference point per block for the order-1 gradient average (see the header).
-  std::map<int, Point2> reference;
-  for (const ModelCover& cover : covers) {
-    if (cover.extension_element >= 0)
-      reference.emplace(cover.block, cover.position);
-  }
   for (int c = 0; c < n_covers(); ++c) {
     const ModelCover& cover = covers[at(c)];
     if (cover.extension_element < 0)
@@ -197,27 +193,25 @@ std::vector<LinearConstraint> Model::extension_relations() const {
     }
     if (order == 0)
       continue;
-    const Point2 c0 = reference.at(cover.block);
-    auto local = [&](const Point2& x) {
-      const Point2 d = x - root_shape.origin();
-      return Eigen::Vector3d(1.0, d.x(), d.y());
-    };
-    const Eigen::Vector3d at_node = local(cover.position);
-    const Eigen::Vector3d at_reference = local(c0);
-    for (int axis = 0; axis < 2; ++axis) {
-      const auto& derivative = axis == 0 ? root_shape.dx() : root_shape.dy();
-      for (int component = 0; component < 2; ++component) {
-        LinearConstraint gradient;
-        gradient.origin = origin;
-        const int slave = dof(c, 2 + 2 * axis + component);
-        gradient.preferred_slave = slave;
-        gradient.terms.emplace_back(slave, 1.0);
-        for (int a = 0; a < root_shape.n_shapes(); ++a) {
-          const double g = 0.5 * scale * derivative.col(a).dot(at_node + at_reference);
-          gradient.terms.emplace_back(root_dofs[at(2 * a + component)], -g);
-        }
-        relations.push_back(std::move(gradient));
-      }
+    // The gradient: the root's covers' gradients, affinely extrapolated to the tiny cover's
+    // node with the barycentric coordinates of x_c in the root's math triangle. Gradients
+    // that are affine in the node (a quadratic field's representation, a flex of the order-1
+    // dependence) are continued exactly, so quadratics stay representable and the flexes
+    // stay combinations of no displacement (docs/cover-mesher.md, "Tiny pieces").
+    const std::vector<int>& root_covers = elements[at(root)].covers;
+    const std::array<Point2, 3> node = triangle(root);
+    Eigen::Matrix2d edges;
+    edges << node[1] - node[0], node[2] - node[0];
+    const Eigen::Vector2d tail = edges.partialPivLu().solve(cover.position - node[0]);
+    const std::array<double, 3> barycentric{1.0 - tail.sum(), tail(0), tail(1)};
+    for (int gradient = 2; gradient < 6; ++gradient) {
+      LinearConstraint relation;
+      relation.origin = origin;
+      relation.preferred_slave = dof(c, gradient);
+      relation.terms.emplace_back(dof(c, gradient), 1.0);
+      for (int k = 0; k < 3; ++k)
+        relation.terms.emplace_back(dof(root_covers[at(k)], gradient), -barycentric[at(k)]);
+      relations.push_back(std::move(relation));
     }
   }
   return relations;
@@ -273,10 +267,7 @@ std::vector<LinearConstraint> Model::dependency_relations() const {
     };
     std::vector<Eigen::RowVectorXd> rows;
     for (const auto& [c, list] : clusters_of_cover) {
-      const bool pinned = covers[at(c)].extension_element >= 0;
       for (int axis = 0; axis < 2; ++axis) {
-        if (pinned)
-          rows.push_back(gradient_row(c, list[0], axis));
         for (std::size_t k = 1; k < list.size(); ++k)
           rows.push_back(gradient_row(c, list[0], axis) - gradient_row(c, list[k], axis));
       }

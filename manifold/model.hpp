@@ -134,9 +134,10 @@ public:
   [[nodiscard]] int find_element(const Point2& x, double tolerance) const;
 
   /// Constraints giving every tiny cover the extension of its extension element's field
-  /// (docs/formulation.md, "Tiny covers"): order 0 u_c = U(x_c); order 1 the cover function
-  /// U(x_c) + (grad U(x_c) + grad U(c0)) / 2 . (x - x_c) with one c0 per block, which keeps
-  /// every quadratic representable.
+  /// (docs/cover-mesher.md, "Tiny pieces"): order 0 u_c = U(x_c); order 1 the cover function
+  /// U(x_c) + G_c . (x - x_c), G_c the root's three covers' gradients extrapolated affinely
+  /// to x_c, which keeps every quadratic representable and moves the tiny cover with every
+  /// flex of the order-1 dependence (dependency_relations()).
   [[nodiscard]] std::vector<LinearConstraint> extension_relations() const;
 
   /// For order 1: unknowns fixed to zero to remove the linear dependence of the cover

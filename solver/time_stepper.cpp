@@ -102,17 +102,6 @@ singular_message(const Model& model, const DofMap& map, long column, SolveStatus
                "(dynamic analysis)";
     break;
   }
-  // Order-1 covers next to a tiny cover of an extremely thin sliver can leave modes of almost
-  // no stiffness in a body that is held (docs/formulation.md, "Known limitations").
-  long tiny = 0;
-  for (const ModelCover& cover : model.covers)
-    tiny += cover.extension_element >= 0 ? 1 : 0;
-  if (model.order >= 1 && tiny > 0)
-    message << ". If the body is held, the cause can be a tiny cover (a sliver of material in "
-               "a math node's star; this model has "
-            << tiny
-            << ") with order-1 covers: set min_cover_area_ratio = 1e-9 in [cover_mesh], or "
-               "change its size slightly";
   return message.str();
 }
 
