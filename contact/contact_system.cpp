@@ -622,10 +622,9 @@ void ContactSystem::contribution(const Model& model,
     // Shear spring (eq. 3.25-3.26) anchored at P0.
     stiffness += p.stiffness * hs * hs.transpose();
     load -= p.stiffness * k.s0 * hs;
-  } else {
+  } else if (const double friction = friction_force(p); friction != 0.0) {
     // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
     // from the normal force of the last iteration so that the matrix stays symmetric.
-    const double friction = std::max(0.0, p.normal_force) * std::tan(p.strength.friction_angle);
     load -= static_cast<double>(p.slide_sign) * friction * hs;
   }
 }

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <unordered_map>
@@ -94,6 +95,15 @@ struct ContactPoint {
   /// way. The springs push with p (offset - gap).
   double offset = 0.0;
 };
+
+/// The friction force of a sliding point as its spring pair's load (Shi eq. 3.27-3.33):
+/// normal force of the last iteration times tan(friction angle), N; 0 when the point does not
+/// slide, is not pressed, or is frictionless (no friction term is assembled then).
+[[nodiscard]] inline double friction_force(const ContactPoint& p) {
+  if (p.mode != ContactMode::slide || p.normal_force <= 0.0 || p.strength.friction_angle == 0.0)
+    return 0.0;
+  return p.normal_force * std::tan(p.strength.friction_angle);
+}
 
 /// What one open-close iteration found.
 struct ModeUpdate {

@@ -679,6 +679,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     summary.step_cuts = stepper.counters().step_cuts;
     summary.counters = stepper.counters();
     summary.solver_counters = stepper.solver_counters();
+    // Stresses are recovered for output (make_step_data) once per step file and nowhere else.
+    summary.stress_recoveries = result.output_steps;
     summary.warnings = all_warnings();
     summary.monitors.clear();
     const std::vector<MonitorValues> values = analysis.monitor_values();

@@ -256,6 +256,8 @@ std::string summary_json(const RunSummary& s) {
   counters.integer("pattern_builds", s.counters.pattern_builds);
   counters.integer("contact_searches", s.counters.contact_searches);
   counters.integer("stress_updates", s.counters.stress_updates);
+  counters.integer("stress_recoveries", s.stress_recoveries);
+  counters.integer("friction_terms", s.counters.friction_terms);
   counters.integer("symbolic_analyses", s.solver_counters.symbolic_analyses);
   counters.integer("factorizations", s.solver_counters.factorizations);
   counters.integer("solves", s.solver_counters.solves);

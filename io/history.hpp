@@ -110,6 +110,9 @@ struct RunSummary {
   double max_penetration = 0.0;
   StepperCounters counters;
   SolverCounters solver_counters;
+  /// Times the elements' stresses were recovered for output (centroid values, principal
+  /// stresses and directions): once per step file, never in between.
+  long stress_recoveries = 0;
   CoverMesherStats mesher;
 };
 

@@ -553,9 +553,12 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         Eigen::MatrixXd spring;
         Eigen::VectorXd load;
         for (int i = 0; i < impl_->contact->n_points(); ++i) {
-          if (impl_->contact->points()[at(i)].mode == ContactMode::open)
+          const ContactPoint& point = impl_->contact->points()[at(i)];
+          if (point.mode == ContactMode::open)
             continue; // no spring, no load
           impl_->contact->contribution(model_, i, spring, load);
+          if (friction_force(point) != 0.0)
+            ++counters_.friction_terms;
           const std::vector<int>& dofs = contact_dofs[at(i)];
           for (std::size_t j = 0; j < dofs.size(); ++j)
             f_iteration(dofs[j]) += load(static_cast<Eigen::Index>(j));
@@ -744,8 +747,8 @@ std::vector<double*> time_counters(StepperCounters& c) {
 }
 
 std::vector<long*> work_counters(StepperCounters& c) {
-  return {&c.steps,          &c.step_cuts,     &c.contact_searches,
-          &c.pattern_builds, &c.plan_rebuilds, &c.stress_updates};
+  return {&c.steps,         &c.step_cuts,      &c.contact_searches, &c.pattern_builds,
+          &c.plan_rebuilds, &c.stress_updates, &c.friction_terms};
 }
 
 } // namespace

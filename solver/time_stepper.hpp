@@ -79,8 +79,11 @@ struct StepperCounters {
   long step_cuts = 0;
   long contact_searches = 0;
   long pattern_builds = 0;
-  long plan_rebuilds = 0; ///< couplings changed within the pattern: new plans, same analysis
-  long stress_updates = 0;
+  long plan_rebuilds = 0;  ///< couplings changed within the pattern: new plans, same analysis
+  long stress_updates = 0; ///< element stresses advanced by a step's strain (every step)
+  /// Friction loads assembled (a sliding, pressed contact point with friction, per open-close
+  /// iteration): 0 in a frictionless scene.
+  long friction_terms = 0;
   /// Wall time of each part of the steps so far, s (bench/step_bench.cpp and
   /// bench/block_bench.py report them). The parts are laps of one clock through a step, so
   /// they add up to seconds_steps (every try of a cut step included).

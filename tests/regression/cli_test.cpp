@@ -312,6 +312,76 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
   EXPECT_GT(counters.at("seconds_contact_modes").number, 0.0);
 }
 
+// ---------------------------------------------------------------------------------------
+// Skipping what a scene does not need (issue 8), measured by summary.json's counters
+
+TEST_F(Cli, StaticSceneWithoutContactSolvesOncePerLoadStepAndNeverSearchesForContact) {
+  // The cantilever (one block, no joint) in three static load steps, a step file every other
+  // step: no contact search at all, one factorisation and one solve per step (the matrix of
+  // each step is the same, but the geometry moved: refactorised; no open-close iteration),
+  // no friction term, and the stresses recovered for the three step files only (0, 2, 3),
+  // while every step advances them.
+  std::string text = read_text(example / "case.toml");
+  text = replaced(text, "geometry = \"cantilever.geo\"",
+                  "geometry = \"" + (example / "cantilever.geo").string() + "\"");
+  text = replaced(text, "steps = 1", "steps = 3");
+  text = replaced(text, "every = 1", "every = 2");
+  testing::write_text(dir() / "steps.toml", text);
+  const fs::path out = dir() / "out";
+  const ProcessResult run =
+      nmm({"run", (dir() / "steps.toml").string(), "-o", out.string(), "--quiet"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const testing::Json counters = parse_json(read_text(out / "summary.json")).at("counters");
+  EXPECT_EQ(counters.at("steps").number, 3);
+  EXPECT_EQ(counters.at("contact_searches").number, 0);
+  EXPECT_EQ(counters.at("solves").number, 3);
+  EXPECT_EQ(counters.at("factorizations").number, 3);
+  EXPECT_EQ(counters.at("friction_terms").number, 0);
+  EXPECT_EQ(counters.at("stress_updates").number, 3);
+  EXPECT_EQ(counters.at("stress_recoveries").number, 3);
+  EXPECT_EQ(read_pvd(out / "case.pvd").size(), 3u);
+}
+
+TEST_F(Cli, FrictionlessBlockSlidesWithoutOneFrictionTermAndAFrictionalOneWithThem) {
+  // examples/03_block_on_incline for 0.2 s, with its friction angle of 30 degrees and with
+  // none: the frictionless block slides g sin 45 t^2 / 2 (to 1e-4, as the frictional one in
+  // OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) and assembles no friction term, while the
+  // frictional one assembles one per sliding contact point and open-close iteration.
+  const fs::path example_dir = fs::path(NMM_EXAMPLES_DIR) / "03_block_on_incline";
+  std::string text = read_text(example_dir / "case.toml");
+  text = replaced(text, "geometry = \"incline.geo\"",
+                  "geometry = \"" + (example_dir / "incline.geo").string() + "\"");
+  text = replaced(text, "end_time = 1.0", "end_time = 0.2");
+  for (const double phi : {30.0, 0.0}) {
+    std::string changed = text;
+    if (phi == 0.0) {
+      changed = replaced(changed, "[joints.slip]\nfriction_angle = 30.0",
+                         "[joints.slip]\nfriction_angle = 0.0");
+      changed = replaced(changed,
+                         "[contact]              # the ramp's free surface that the "
+                         "block slides onto: a contact takes\nfriction_angle = 30.0",
+                         "[contact]\nfriction_angle = 0.0");
+    }
+    const std::string name = phi == 0.0 ? "frictionless" : "friction";
+    testing::write_text(dir() / (name + ".toml"), changed);
+    const fs::path out = dir() / name;
+    const ProcessResult run =
+        nmm({"run", (dir() / (name + ".toml")).string(), "-o", out.string(), "--quiet"});
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const testing::Json summary = parse_json(read_text(out / "summary.json"));
+    const testing::Json& block = summary.at("monitors").at("block");
+    const double slid = -(block.at("ux").number + block.at("uy").number) / std::sqrt(2.0);
+    const double phi_rad = phi * M_PI / 180.0;
+    const double exact = 0.5 * 9.81 * 0.04 * std::sqrt(0.5) * (1.0 - std::tan(phi_rad));
+    EXPECT_NEAR(slid, exact, 1e-4 * exact) << name;
+    const double terms = summary.at("counters").at("friction_terms").number;
+    if (phi == 0.0)
+      EXPECT_EQ(terms, 0.0);
+    else
+      EXPECT_GT(terms, summary.at("steps").number) << "a friction term in every step";
+  }
+}
+
 TEST_F(Cli, OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) {
   // examples/03_block_on_incline with `model = "dda"` or `"vem"` added to the block's
   // material and nothing else changed (issue 6: a region switches model with one word): the
