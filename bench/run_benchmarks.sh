@@ -17,3 +17,9 @@ done
 # DDA, VEM and NMM blocks on the same rock mass, and the 70-block wall (about 9 minutes).
 echo "== block_bench"
 python3 "$root/bench/block_bench.py" --work "$root/build/block-bench" | tee "$out/block_bench.txt"
+# Error against run time for four closed-form problems (issue 8; about 4 minutes). The
+# pictures go with the results; docs/pictures/work_precision_*.png are drawn by running the
+# script without --pictures.
+echo "== work_precision"
+python3 "$root/bench/work_precision.py" --work "$root/build/work-precision" --pictures "$out" \
+  | tee "$out/work_precision.txt"
