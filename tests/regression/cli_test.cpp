@@ -44,6 +44,14 @@ using testing::TempDir;
 const fs::path nmm_program = NMM_EXECUTABLE;
 const fs::path example = fs::path(NMM_EXAMPLES_DIR) / "01_cantilever";
 
+/// The case file of examples/@p name with its geometry (@p geometry) named by its full path,
+/// so that an edited copy can be written anywhere.
+std::string example_case(const std::string& name, const std::string& geometry) {
+  const fs::path folder = fs::path(NMM_EXAMPLES_DIR) / name;
+  return replaced(read_text(folder / "case.toml"), "geometry = \"" + geometry + "\"",
+                  "geometry = \"" + (folder / geometry).string() + "\"");
+}
+
 class Cli : public ::testing::Test {
 protected:
   Cli() : dir_("nmm_cli") {}
@@ -321,9 +329,7 @@ TEST_F(Cli, StaticSceneWithoutContactSolvesOncePerLoadStepAndNeverSearchesForCon
   // each step is the same, but the geometry moved: refactorised; no open-close iteration),
   // no friction term, and the stresses recovered for the three step files only (0, 2, 3),
   // while every step advances them.
-  std::string text = read_text(example / "case.toml");
-  text = replaced(text, "geometry = \"cantilever.geo\"",
-                  "geometry = \"" + (example / "cantilever.geo").string() + "\"");
+  std::string text = example_case("01_cantilever", "cantilever.geo");
   text = replaced(text, "steps = 1", "steps = 3");
   text = replaced(text, "every = 1", "every = 2");
   testing::write_text(dir() / "steps.toml", text);
@@ -347,10 +353,7 @@ TEST_F(Cli, FrictionlessBlockSlidesWithoutOneFrictionTermAndAFrictionalOneWithTh
   // none: the frictionless block slides g sin 45 t^2 / 2 (to 1e-4, as the frictional one in
   // OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) and assembles no friction term, while the
   // frictional one assembles one per sliding contact point and open-close iteration.
-  const fs::path example_dir = fs::path(NMM_EXAMPLES_DIR) / "03_block_on_incline";
-  std::string text = read_text(example_dir / "case.toml");
-  text = replaced(text, "geometry = \"incline.geo\"",
-                  "geometry = \"" + (example_dir / "incline.geo").string() + "\"");
+  std::string text = example_case("03_block_on_incline", "incline.geo");
   text = replaced(text, "end_time = 1.0", "end_time = 0.2");
   for (const double phi : {30.0, 0.0}) {
     std::string changed = text;
@@ -388,13 +391,10 @@ TEST_F(Cli, OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) {
   // block slides the analytic distance on the NMM ramp, g t² (sin 45 - tan 30 cos 45) / 2 at
   // t = 0.5 s, to 1e-4 (measured 2e-7 for both at t = 1 s), and the step files mark its
   // cells with the kind (1 DDA, 2 VEM).
-  const fs::path example_dir = fs::path(NMM_EXAMPLES_DIR) / "03_block_on_incline";
-  const std::string text = read_text(example_dir / "case.toml");
+  const std::string text = example_case("03_block_on_incline", "incline.geo");
   for (const auto& [model, kind] : {std::pair{"dda", 1}, std::pair{"vem", 2}}) {
     std::string changed = replaced(text, "[materials.block]\n",
                                    std::string("[materials.block]\nmodel = \"") + model + "\"\n");
-    changed = replaced(changed, "geometry = \"incline.geo\"",
-                       "geometry = \"" + (example_dir / "incline.geo").string() + "\"");
     changed = replaced(changed, "end_time = 1.0", "end_time = 0.5");
     const fs::path case_path = dir() / (std::string(model) + ".toml");
     testing::write_text(case_path, changed);
@@ -623,9 +623,7 @@ class Interrupt : public Cli, public ::testing::WithParamInterface<int> {};
 
 TEST_P(Interrupt, StopsAfterTheCurrentStepWithEveryFileReadableAndExitCode130) {
   // The cantilever, dynamic, coarse, with far more steps than the test waits for.
-  std::string text = read_text(example / "case.toml");
-  text = replaced(text, "geometry = \"cantilever.geo\"",
-                  "geometry = \"" + (example / "cantilever.geo").string() + "\"");
+  std::string text = example_case("01_cantilever", "cantilever.geo");
   text = replaced(text, "size = 0.25", "size = 1.0");
   text = replaced(text, "order = 1", "order = 0");
   text = replaced(text, "young = 1.0e9", "young = 1.0e9\ndensity = 2000.0");
