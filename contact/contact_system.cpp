@@ -577,6 +577,17 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   add(k.hn, slave_shape, nullptr, slave, perp(b - a) / l);
   add(k.hn, master_shape, master_local.data(), a, perp(slave - b) / l);
   add(k.hn, master_shape, master_local.data(), b, Point2(-perp(slave - a) / l));
+  if (model.order >= 1 && master_shape.nmm() != nullptr) {
+    // The master terms above move the foot of the slave point, A + t (B - A), with the
+    // straight line through the moved ends A and B: exact for a straight edge (order 0, DDA,
+    // VEM). An order-1 edge bends (its displacement is quadratic along it); the foot moves
+    // with the master's own field there: n . (T(foot) - (1 - t) T(A) - t T(B)) d less gap.
+    const double foot = (slave - a).dot(b - a) / (l * l);
+    const Point2 normal = perp(b - a) / l;
+    add(k.hn, master_shape, master_local.data(), a + foot * (b - a), Point2(-normal));
+    add(k.hn, master_shape, master_local.data(), a, (1.0 - foot) * normal);
+    add(k.hn, master_shape, master_local.data(), b, foot * normal);
+  }
   // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
   const Point2 anchor = a + p.anchor * (b - a);
   k.s0 = (slave - anchor).dot(tangent);
