@@ -59,7 +59,10 @@ struct PrincipalStress {
 /// `shear_force` (N per metre of thickness; compressive normal force positive, shear along
 /// the master edge), `state` (Int32: 0 open, 1 slide, 2 lock), `gap` (m, negative:
 /// penetration), `normal` (unit outward normal of the master edge, 3 components), `bonded`
-/// (Int32: 1 for an intact joint); field data `TimeValue` (s).
+/// (Int32: 1 for an intact joint), `length` (the point's tributary length, m), `pressure`
+/// (compressive normal stress, Pa: an angle's spring force over its length; for the points of
+/// edge-to-edge contacts the force of the closed points on the same slave edge over their
+/// summed lengths; 0 when open); field data `TimeValue` (s).
 [[nodiscard]] PointCloudData
 make_contact_data(const ContactSystem& contact, const Model& model, double time);
 
