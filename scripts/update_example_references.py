@@ -53,6 +53,7 @@ EXAMPLES = [
     ("14_single_joint_in_triangle/case.toml", 50),
     ("15_circular_sliding/case.toml", 20),
     ("16_jointed_double_cantilever/case.toml", 5),
+    ("17_hertz_contact/case.toml", 1),
 ]
 
 
