@@ -32,34 +32,16 @@ and after each run, and the CPU model. Times are wall-clock as nmm measures them
 import argparse
 import json
 import os
-import platform
 import shutil
 import subprocess
 import sys
 import time
 
+from machine import cpu_model, load_average
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WALL_GOAL_SECONDS = 0.2  # issue 6: the 70-block wall's 583 steps
 DDA_GOAL_STEPS_PER_SECOND = 20.0  # issue 6: at 10000 DDA blocks
-
-
-def load_average():
-    try:
-        with open("/proc/loadavg") as f:
-            return float(f.read().split()[0])
-    except OSError:
-        return float("nan")
-
-
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def parse_steps(text):

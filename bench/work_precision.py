@@ -58,11 +58,12 @@ import csv
 import json
 import math
 import os
-import platform
 import shutil
 import subprocess
 import sys
 import time
+
+from machine import cpu_model, load_average
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PROBLEMS = ("cantilever", "kirsch", "griffith", "incline")
@@ -78,24 +79,6 @@ def integrate(f, a, b):
     half = 0.5 * (b - a)
     mid = 0.5 * (a + b)
     return sum(w * f(mid + half * x) for x, w in GAUSS) * half
-
-
-def load_average():
-    try:
-        return os.getloadavg()[0]
-    except OSError:
-        return float("nan")
-
-
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def number(x):
