@@ -302,7 +302,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     auto [s0, s1] = carried_by_slave.equal_range(slave);
     for (auto it = s0; it != s1; ++it) {
       const Carried& state = carried_.at(it->second);
-      if (!closed(state.mode) || ((it->second & 1U) != 0) != edge)
+      if (!closed(state.mode) || is_edge_pair(it->second) != edge)
         continue;
       if (state.master == master) {
         *identical = true;
@@ -316,7 +316,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     auto [m0, m1] = carried_by_master.equal_range(master);
     for (auto it = m0; it != m1; ++it) {
       const Carried& state = carried_.at(it->second);
-      if (closed(state.mode) && (it->second & 1U) != 0 && adjacent(state.slave, slave))
+      if (closed(state.mode) && is_edge_pair(it->second) && adjacent(state.slave, slave))
         return &state;
     }
     return nullptr;
@@ -612,7 +612,7 @@ std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
   return kinematics(model, p).dofs;
 }
 
-void ContactSystem::contribution(const Model& model,
+bool ContactSystem::contribution(const Model& model,
                                  int i,
                                  Eigen::MatrixXd& stiffness,
                                  Eigen::VectorXd& load) const {
@@ -623,7 +623,7 @@ void ContactSystem::contribution(const Model& model,
   stiffness.setZero(n, n);
   load.setZero(n);
   if (p.mode == ContactMode::open)
-    return;
+    return false;
   const Eigen::VectorXd& hn = k.hn;
   const Eigen::VectorXd& hs = k.hs;
   // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
@@ -637,7 +637,9 @@ void ContactSystem::contribution(const Model& model,
     // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
     // from the normal force of the last iteration so that the matrix stays symmetric.
     load -= static_cast<double>(p.slide_sign) * friction * hs;
+    return true;
   }
+  return false;
 }
 
 ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd& raw) {
@@ -984,9 +986,9 @@ std::vector<ContactSystem::Place> ContactSystem::current_places(const Model& mod
   result.reserve(points_.size());
   for (const ContactPoint& p : points_) {
     Place place;
-    place.position = (p.key & 1U) != 0 ? Point2((1.0 - p.u) * position[at(p.slave_edge)] +
-                                                p.u * position[at(next[at(p.slave_edge)])])
-                                       : position[at(p.slave_edge)];
+    place.position = is_edge_pair(p.key) ? Point2((1.0 - p.u) * position[at(p.slave_edge)] +
+                                                  p.u * position[at(next[at(p.slave_edge)])])
+                                         : position[at(p.slave_edge)];
     place.normal = perp(position[at(next[at(p.master)])] - position[at(p.master)]).normalized();
     result.push_back(place);
   }

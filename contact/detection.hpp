@@ -63,6 +63,9 @@ struct ContactCandidate {
   }
 };
 
+/// Whether a ContactCandidate::key() (and so a ContactPoint's key) is an edge-to-edge pair's.
+[[nodiscard]] constexpr bool is_edge_pair(std::uint64_t key) noexcept { return (key & 1U) != 0; }
+
 /// Criteria of the detection (Shi 3.1).
 struct DetectionOptions {
   /// Largest distance between an angle and an edge, or two angles, that can close in one

@@ -153,10 +153,9 @@ PointCloudData make_contact_data(const ContactSystem& contact, const Model& mode
   const auto own_force = [](const ContactPoint& p) {
     return p.mode != ContactMode::open ? p.stiffness * (p.offset - p.gap) : 0.0;
   };
-  const auto is_edge = [](const ContactPoint& p) { return (p.key & 1U) != 0; };
   std::unordered_map<int, std::pair<double, double>> edge_load; // slave edge: force, length
   for (const ContactPoint& p : points) {
-    if (is_edge(p) && p.mode != ContactMode::open) {
+    if (is_edge_pair(p.key) && p.mode != ContactMode::open) {
       auto& [force, tributary] = edge_load[p.slave_edge];
       force += own_force(p);
       tributary += p.length;
@@ -174,7 +173,7 @@ PointCloudData make_contact_data(const ContactSystem& contact, const Model& mode
     double mean = 0.0;
     if (p.mode != ContactMode::open) {
       const auto [force, tributary] =
-          is_edge(p) ? edge_load.at(p.slave_edge) : std::make_pair(own_force(p), p.length);
+          is_edge_pair(p.key) ? edge_load.at(p.slave_edge) : std::make_pair(own_force(p), p.length);
       mean = tributary > 0.0 ? force / tributary : 0.0;
     }
     pressure.push_back(mean);
