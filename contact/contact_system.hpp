@@ -146,7 +146,8 @@ public:
   [[nodiscard]] std::vector<int> point_dofs(const Model& model, int i) const;
 
   /// Springs and friction loads of point i in its current mode, on point_dofs(i).
-  void
+  /// @return whether a friction load was assembled (friction_force() of the point is not 0).
+  bool
   contribution(const Model& model, int i, Eigen::MatrixXd& stiffness, Eigen::VectorXd& load) const;
 
   /// After a solve with step displacement @p raw: new modes by Shi's mode table, new lift-off

@@ -556,8 +556,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           const ContactPoint& point = impl_->contact->points()[at(i)];
           if (point.mode == ContactMode::open)
             continue; // no spring, no load
-          impl_->contact->contribution(model_, i, spring, load);
-          if (friction_force(point) != 0.0)
+          if (impl_->contact->contribution(model_, i, spring, load))
             ++counters_.friction_terms;
           const std::vector<int>& dofs = contact_dofs[at(i)];
           for (std::size_t j = 0; j < dofs.size(); ++j)
