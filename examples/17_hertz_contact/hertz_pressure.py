@@ -30,32 +30,30 @@ def lz4_block(source, size):
     """Decodes one LZ4 block (the format of the lz4 library's LZ4_compress_default)."""
     out = bytearray()
     i = 0
-    while i < len(source):
-        token = source[i]
-        i += 1
-        literals = token >> 4
-        if literals == 15:
+
+    def length(nibble):
+        """A length from its token nibble: 15 goes on in bytes until one below 255."""
+        nonlocal i
+        if nibble == 15:
             while True:
                 extra = source[i]
                 i += 1
-                literals += extra
+                nibble += extra
                 if extra != 255:
                     break
+        return nibble
+
+    while i < len(source):
+        token = source[i]
+        i += 1
+        literals = length(token >> 4)
         out += source[i:i + literals]
         i += literals
         if i >= len(source):  # the last sequence has literals only
             break
         offset = source[i] | (source[i + 1] << 8)
         i += 2
-        match = token & 15
-        if match == 15:
-            while True:
-                extra = source[i]
-                i += 1
-                match += extra
-                if extra != 255:
-                    break
-        match += 4
+        match = length(token & 15) + 4
         start = len(out) - offset
         for k in range(match):  # byte by byte: a match may overlap what it copies
             out.append(out[start + k])
