@@ -2,6 +2,7 @@
 #include "io/gmsh_reader.hpp"
 
 #include "io/text.hpp"
+#include "mesh/cover_mesher.hpp"
 #include "mesh/error.hpp"
 #include "mesh/geometry.hpp"
 
@@ -912,6 +913,9 @@ triangulate_physical_mesh(const std::string& file, const PhysicalMesh& physical,
     const std::set<int> surfaces = entity_tags(2);
     mesh = collect_triangles(file, std::vector<int>(surfaces.begin(), surfaces.end()));
   });
+  // gmsh rounds the nodes it places along a slanted edge: some fall a hair inside the
+  // material, which the math mesh must cover to its boundary.
+  fit_math_mesh_to_boundary(mesh, physical);
   return mesh;
 }
 

@@ -24,6 +24,7 @@
 #include <map>
 #include <numeric>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -1096,13 +1097,15 @@ private:
       std::optional<Point2> previous_end;
       for (const int id : global) {
         const std::vector<SidePiece> pieces = side_pieces(id);
-        NMM_ASSERT(!pieces.empty(), "a boundary halfedge has no pieces");
         const GlobalEdge& edge = edges_[to_index(id / 2)];
+        if (pieces.empty())
+          throw_uncovered_boundary(to_point2(id % 2 == 0 ? edge.source : edge.target));
         for (const SidePiece& piece : pieces) {
           // Pieces between exact points closer than rounding vanish: no zero-length edges.
           if (piece.a == piece.b)
             continue;
-          NMM_ASSERT(!previous_end || piece.a == *previous_end, "boundary pieces do not chain");
+          if (previous_end && piece.a != *previous_end)
+            throw_uncovered_boundary(*previous_end);
           previous_end = piece.b;
           where[{id, piece.a.x(), piece.a.y(), piece.b.x(), piece.b.y()}] = {index,
                                                                              loop.n_vertices()};
@@ -1115,7 +1118,8 @@ private:
       }
       if (loop.vertices.size() < 2)
         continue; // a loop thinner than rounding (a crack of zero rounded length)
-      NMM_ASSERT(previous_end == loop.vertices.front(), "a boundary loop does not close");
+      if (previous_end != loop.vertices.front())
+        throw_uncovered_boundary(*previous_end);
       result_.blocks[to_index(loop.block)].loops.push_back(index);
       result_.loops.push_back(std::move(loop));
     }
@@ -1136,6 +1140,17 @@ private:
       for (const int l : block.loops)
         block.area += signed_area(result_.loops[to_index(l)].vertices);
     }
+  }
+
+  /// The pieces of a boundary edge leave a gap: no math triangle covers the material there.
+  [[noreturn]] void throw_uncovered_boundary(const Point2& near) const {
+    throw InputError(physical_.source +
+                     ": the mathematical mesh leaves the material's boundary "
+                     "uncovered after " +
+                     point_text(near) +
+                     ": every part of the material must lie in a math triangle; with a "
+                     "triangulation of your own, put its boundary nodes on the material's "
+                     "boundary or outside it, or use [cover_mesh] kind = \"regular\"");
   }
 
   void build_curve_pieces() {
@@ -1250,6 +1265,76 @@ private:
 };
 
 } // namespace
+
+int fit_math_mesh_to_boundary(MathMesh& math, const PhysicalMesh& physical) {
+  // Edges of region loops with material on their left; an edge walked the other way by a
+  // loop too (an interface between two regions) has material on both sides and is skipped.
+  std::set<std::array<double, 4>> directed;
+  for (const MaterialRegion& region : physical.regions) {
+    for (const Polygon& polygon : region.polygons) {
+      auto add_loop = [&](const Loop& loop) {
+        for (std::size_t k = 0; k < loop.size(); ++k) {
+          const Point2& a = loop[k];
+          const Point2& b = loop[(k + 1) % loop.size()];
+          directed.insert({a.x(), a.y(), b.x(), b.y()});
+        }
+      };
+      add_loop(polygon.outer);
+      for (const Loop& hole : polygon.holes)
+        add_loop(hole);
+    }
+  }
+  const TriangleGrid grid(math);
+  std::vector<int> stamp(to_index(math.n_nodes()), -1);
+  int edge_index = 0;
+  int moved = 0;
+  for (const auto& [ax, ay, bx, by] : directed) {
+    ++edge_index;
+    if (directed.count({bx, by, ax, ay}) != 0)
+      continue;
+    const Point2 a(ax, ay);
+    const Point2 b(bx, by);
+    const Point2 along = b - a;
+    const double length = along.norm();
+    if (!(length > 0.0))
+      continue;
+    // "Within rounding": a mesh generator's boundary nodes are off the segment by a few
+    // units in the last place of the coordinates; 1e-12 of the edge's size and position
+    // is far above that and far below any distance a mesh means.
+    const double reach =
+        1.0e-12 * std::max({length, a.lpNorm<Eigen::Infinity>(), b.lpNorm<Eigen::Infinity>()});
+    const Point2 outward = Point2(along.y(), -along.x()) / length; // right of a -> b
+    const ExactPoint ea(ax, ay);
+    const ExactPoint eb(bx, by);
+    grid.for_triangles_near(a, b, [&](int t) {
+      for (const int node : math.triangles[to_index(t)]) {
+        if (stamp[to_index(node)] == edge_index)
+          continue;
+        stamp[to_index(node)] = edge_index;
+        Point2& p = math.nodes[to_index(node)];
+        const double s = (p - a).dot(along) / (length * length);
+        if (!(s > 0.0 && s < 1.0) || std::abs((p - a).dot(outward)) > reach)
+          continue;
+        if (CGAL::orientation(ea, eb, ExactPoint(p.x(), p.y())) != CGAL::LEFT_TURN)
+          continue; // on the edge or outside the material already
+        // Step outward by a growing multiple of the coordinates' last place until the node
+        // is on the edge or outside: a few steps, a few units in the last place.
+        double step =
+            std::numeric_limits<double>::epsilon() * std::max(p.lpNorm<Eigen::Infinity>(), length);
+        Point2 q = p;
+        for (int k = 0;
+             k < 64 && CGAL::orientation(ea, eb, ExactPoint(q.x(), q.y())) == CGAL::LEFT_TURN;
+             ++k) {
+          q = p + step * outward;
+          step *= 2.0;
+        }
+        p = q;
+        ++moved;
+      }
+    });
+  }
+  return moved;
+}
 
 CoverSystem build_cover_system(const MathMesh& math,
                                const PhysicalMesh& physical,

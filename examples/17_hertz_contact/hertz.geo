@@ -51,8 +51,8 @@ For i In {1:#gs[] - 1}
   x = R * Sin(t);
   y = R * (1 - Cos(t));
   If (i == #gs[] - 1)
-    x = R; // exactly: 1 - Cos(Pi / 2) leaves y 6e-17 low, and the loaded radius drawn
-           // from there got its pressure only on x < 0.5 (README, "Files")
+    x = R; // exactly: 1 - Cos(Pi / 2) leaves y 6e-17 low, which tilts the loaded
+           // radius (README, "Files")
     y = R;
   EndIf
   Point(p) = {x, y, 0};

@@ -373,6 +373,69 @@ TEST_F(CaseRunner, GmshMathMeshAndOrderOneRunToo) {
   EXPECT_EQ(result.status, RunStatus::completed);
 }
 
+TEST_F(CaseRunner, PressureOnAnEdgeTiltedByRoundingLoadsItsWholeLengthOnAGmshCoverMesh) {
+  // The top edge ends one unit in the last place below y = 1 at x = 1, as a .geo computing
+  // 1 - cos(pi/2) makes it. gmsh rounds the nodes it puts on that edge, half of them below
+  // it; before 2026-11-26 the top right half then had no elements and got no pressure (the
+  // top right moved 0.15 mm instead of 1 mm, with no error).
+  testing::write_text(dir() / "tilted.geo", R"(Point(1) = {0, 0, 0};
+Point(2) = {1, 0, 0};
+Point(3) = {1, 0.9999999999999999, 0};
+Point(4) = {0, 1, 0};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Surface("rock") = {1};
+Physical Curve("base") = {1};
+Physical Curve("sides") = {2, 4};
+Physical Curve("top") = {3};
+)");
+  const fs::path file = write_case(dir(), R"(geometry = "tilted.geo"
+[cover_mesh]
+kind = "gmsh"
+size = 0.1
+[materials.rock]
+density = 1.0
+young = 1.0e9
+poisson = 0.0
+plane = "stress"
+[[boundary]]
+curve = "base"
+fix = "y"
+[[boundary]]
+curve = "sides"
+fix = "x"
+[[load]]
+curve = "top"
+pressure = 1.0e6
+[analysis]
+kind = "static"
+steps = 1
+[[monitor]]
+name = "left"
+point = [0.2, 1.0]
+[[monitor]]
+name = "right"
+point = [0.8, 1.0]
+[output]
+dir = "out"
+)");
+  CaseAnalysis analysis(read_case_file(file));
+  ASSERT_EQ(run_case(analysis, {}).status, RunStatus::completed);
+  const testing::Json summary = parse_json(read_text(dir() / "out" / "summary.json"));
+  // Uniaxial compression between rollers, nu = 0: syy = -p and uy = -p y / E = -1 mm at the
+  // top, which order-0 covers reproduce exactly; 1e-9 relative is rounding of the solve
+  // (the edge's tilt of 1e-16 changes the answer by far less).
+  for (const char* name : {"left", "right"}) {
+    const testing::Json& monitor = summary.at("monitors").at(name);
+    EXPECT_NEAR(monitor.at("uy").number, -1.0e-3, 1e-12) << name;
+    EXPECT_NEAR(monitor.at("syy").number, -1.0e6, 1e-3) << name;
+  }
+}
+
 TEST_F(CaseRunner, MeshGeometryResolvesOnlyMaterialsAndJoints) {
   // A boundary naming a missing curve does not matter to `nmm mesh`.
   const std::string text = replaced(plate_case, "curve = \"base\"", "curve = \"nowhere\"");

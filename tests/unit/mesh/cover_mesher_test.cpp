@@ -546,6 +546,49 @@ TEST(CoverMesher, MathMeshNotCoveringTheMaterialIsAnInputError) {
   EXPECT_THROW((void)build_cover_system(math, physical, {}), InputError);
 }
 
+TEST(CoverMesher, BoundaryNodesAHairInsideTheMaterialAreAnErrorUntilTheMeshIsFitted) {
+  // The top edge runs from (1, 1 - u) to (0, 1), u one unit in the last place below 1:
+  // what gmsh's own rounding made of a quarter circle's end. A mesh generator puts the node
+  // at x = 0.5 at y = 1 - u, below the edge's exact 1 - u/2, so a sliver of material above
+  // it is in no triangle and the top edge has no elements from x = 0.5 on: a pressure there
+  // acted on half the edge (before 2026-11-26, silently).
+  const double below_one = std::nextafter(1.0, 0.0);
+  PhysicalMesh physical;
+  physical.source = "test.geo";
+  physical.regions = {{"rock", {{{{0.0, 0.0}, {1.0, 0.0}, {1.0, below_one}, {0.0, 1.0}}, {}}}}};
+  physical.curves = {curve("top", {{1.0, below_one}, {0.0, 1.0}})};
+  validate_physical_mesh(physical);
+  MathMesh math;
+  math.nodes = {{0.0, 0.0}, {1.0, 0.0}, {1.0, below_one}, {0.5, below_one}, {0.0, 1.0}};
+  math.triangles = {{0, 1, 2}, {0, 2, 3}, {0, 3, 4}};
+  try {
+    (void)build_cover_system(math, physical, {});
+    ADD_FAILURE() << "no InputError for a math mesh that misses a sliver of the material";
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    EXPECT_NE(message.find("test.geo"), std::string::npos) << message;
+    EXPECT_NE(message.find("uncovered"), std::string::npos) << message;
+  }
+
+  EXPECT_EQ(fit_math_mesh_to_boundary(math, physical), 1);
+  // Moved outward (up) by units in the last place, nothing else touched.
+  EXPECT_GT(math.nodes[3].y(), below_one);
+  EXPECT_LT(math.nodes[3].y() - below_one, 1e-15);
+  EXPECT_EQ(math.nodes[3].x(), 0.5);
+  EXPECT_EQ(math.nodes[4], Point2(0.0, 1.0));
+  EXPECT_EQ(fit_math_mesh_to_boundary(math, physical), 0) << "fitting twice moves nothing";
+  const CoverSystem cs = build_cover_system(math, physical, {});
+  expect_invariants(cs, math, physical);
+  double length = 0.0;
+  for (const CurvePiece& piece : cs.curve_pieces[0]) {
+    EXPECT_TRUE(piece.left_element >= 0 || piece.right_element >= 0)
+        << "a piece of the top edge without its element";
+    length += (piece.b - piece.a).norm();
+  }
+  // The top edge's whole length, to rounding of the piece ends (1e-15 of 1 m).
+  EXPECT_NEAR(length, 1.0, 1e-15);
+}
+
 TEST(CoverMesher, NamedBoundaryCurveHasPiecesAlongItsWholeLength) {
   const PhysicalMesh physical = physical_of(
       {rectangle("rock", 0.0, 0.0, 2.0, 1.0)},
