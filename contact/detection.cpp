@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 #include <unordered_set>
@@ -77,7 +78,8 @@ public:
   Detector(const ContactBoundary& boundary,
            const DetectionOptions& options,
            const std::vector<std::uint64_t>& keep)
-      : b_(boundary), options_(options), keep_(keep.begin(), keep.end()) {}
+      : b_(boundary), options_(options), keep_(keep.begin(), keep.end()),
+        rounding_(rounding_length(boundary)) {}
 
   std::vector<ContactCandidate> run(DetectionStats* stats) {
     const std::vector<std::pair<int, int>> pairs = broad_phase();
@@ -271,7 +273,15 @@ private:
     const Point2& c = b_.position[at(m)];
     const Point2 edge = b_.position[at(b_.next[at(m)])] - c;
     const double t = (p - c).dot(edge) / edge.squaredNorm();
-    if (t <= 0.0 || t >= 1.0) // the ends are angle-to-angle contacts
+    // The ends are angle-to-angle contacts, and so is a vertex at an end to rounding: where
+    // joints cross, the corners of the four sides meet at one point, and an angle-to-edge
+    // contact of a corner against each edge leaving that point (their ends off by a unit in
+    // the last place) doubled the one spring of the angle-to-angle contact: four springs held
+    // two corners, and the friction on each changed the normal force of the others from one
+    // solve to the next (examples/02_jointed_slope: normal forces alternating between 4 and
+    // 17 kN for 50 solves).
+    const double length = std::sqrt(edge.squaredNorm());
+    if (t * length <= rounding_ || (1.0 - t) * length <= rounding_)
       return;
     const Point2 n = b_.outward_normal(m);
     const double gap = n.dot(p - c);
@@ -305,6 +315,30 @@ private:
     return !inside(v, d) && !inside(w, Point2(-d));
   }
 
+  /// Whether vertex w lies along a side of angle v, beyond that side's far end: its
+  /// projection on the side's direction is at least the side's length, and it lies within
+  /// the angle criterion of the side's line. The two angles are then no angle-to-angle
+  /// contact: w meets the side's far corner, or the side itself, before it could reach v.
+  /// Criteria [2] and [4] alone pair them: within the contact distance, and translated onto
+  /// each other their wedges do not overlap, when both lie on one straight joint (the ends
+  /// of its two faces, or the corners where it meets another joint and a free surface). With
+  /// a contact distance of 1.6 m such pairs were 0.1 to 1.3 m apart, and each put a spring
+  /// on an entrance line the vertex was not near: touching (zero gap on the joint's line),
+  /// so locked from the start, or a line rotating with a 0.07 m edge at 11 times its length
+  /// (examples/02_jointed_slope: gaps of -0.67 m within a step, a reported penetration of
+  /// 0.91 m, and open-close iterations that never converged).
+  bool lies_along_side(int v, int w) const {
+    const Point2 d = b_.position[at(w)] - b_.position[at(v)];
+    for (const int end : {b_.next[at(v)], b_.previous[at(v)]}) {
+      const Point2 side = b_.position[at(end)] - b_.position[at(v)];
+      const double length = side.norm();
+      if (d.dot(side) >= length * length &&
+          std::abs(std::atan2(cross(side, d), side.dot(d))) <= options_.angle_overlap)
+        return true;
+    }
+    return false;
+  }
+
   /// Angle-to-angle (Shi 3.1 [2] and [4], entrance lines 3.2): reduced to angle-to-edge
   /// contacts against the entrance lines.
   void test_vertex_vertex(int v, int w) {
@@ -332,7 +366,10 @@ private:
         const Point2& c0 = b_.position[at(e)];
         const Point2 edge = b_.position[at(b_.next[at(e)])] - c0;
         const double t = (b_.position[at(corner)] - c0).dot(edge) / edge.squaredNorm();
-        if (t < 0.0 || t > 1.0)
+        // Not at the edge's far end (to rounding): a corner there meets the corner at that
+        // end (the angle-to-angle contact of the two), as in test_vertex_edge().
+        const double far = e == straight ? 1.0 - t : t;
+        if (t < 0.0 || t > 1.0 || far * std::sqrt(edge.squaredNorm()) <= rounding_)
           continue;
         if (std::min(t, 1.0 - t) > best_centrality) {
           best_centrality = std::min(t, 1.0 - t);
@@ -354,6 +391,8 @@ private:
       add(candidate);
       return;
     }
+    if (lies_along_side(v, w) || lies_along_side(w, v))
+      return;
     const Wedge a = wedge(b_, v);
     const Wedge c = wedge(b_, w);
     const double sa = direction_angle(a.start);
@@ -402,6 +441,7 @@ private:
   const ContactBoundary& b_;
   const DetectionOptions& options_;
   std::unordered_set<std::uint64_t> keep_;
+  double rounding_ = 0.0; ///< rounding_length() of the boundary
   std::unordered_set<std::uint64_t> seen_;
   std::set<std::pair<int, int>> edge_pairs_;
   std::set<std::pair<int, int>> vertex_pairs_;
@@ -412,6 +452,13 @@ private:
 };
 
 } // namespace
+
+double rounding_length(const ContactBoundary& boundary) {
+  double extent = 0.0;
+  for (const Point2& x : boundary.position)
+    extent = std::max(extent, x.cwiseAbs().maxCoeff());
+  return 512.0 * std::numeric_limits<double>::epsilon() * extent;
+}
 
 double ContactBoundary::angle(int v) const {
   const Point2 out = position[at(next[at(v)])] - position[at(v)];

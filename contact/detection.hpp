@@ -35,6 +35,10 @@ struct ContactBoundary {
   [[nodiscard]] bool adjacent(int e, int f) const;
 };
 
+/// The rounding of the coordinates of @p boundary: 512 units in the last place of its largest
+/// coordinate, m. Points closer than this are one point.
+[[nodiscard]] double rounding_length(const ContactBoundary& boundary);
+
 /// What a contact is in Shi's entrance theory.
 enum class ContactKind : std::uint8_t {
   vertex_edge, ///< an angle against an entrance line (angle-to-edge, or the chosen line of

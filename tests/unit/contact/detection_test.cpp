@@ -153,6 +153,58 @@ TEST(ContactDetection, TwoCornersOfOneBlockJoinedByAStraightSideAreNoContact) {
   EXPECT_EQ(count(detect_contacts(stacked, options(0.64), {}), ContactKind::edge_edge), 1);
 }
 
+TEST(ContactDetection, CornersAlongOneStraightJointBeyondASideAreNoAngleContact) {
+  // Two blocks that meet only at the origin, where two joints cross (x = 0 and y = 0): A to
+  // the lower right, B to the upper left. B's right face runs up the joint x = 0 to its corner
+  // (0, 0.5), split at (0, 0.4) where a math edge crosses it. With a contact distance of 1.2
+  // (examples/02_jointed_slope: 1.6 m against edges of 0.07 m) criteria [2] and [4] pair A's
+  // corner at the origin with B's corner (0, 0.5): 0.5 apart, their wedges translated onto
+  // each other touch along the joint without overlapping. But A's corner lies along B's
+  // side (0, 0.5)-(0, 0.4), 0.4 beyond its far end, on the joint's line: a spring there held
+  // it to a line it was not near (touching, so locked from the start). The only contact is
+  // the angle-to-angle one of the two corners at the origin (one spring, with its
+  // alternative line), not one for each edge leaving the origin either.
+  const ContactBoundary b = boundary_of(
+      {{{0, 0}, {0, -1}, {1, -1}, {1, 0}}, {{-1, 0}, {0, 0}, {0, 0.4}, {0, 0.5}, {-1, 0.5}}});
+  const auto contacts = detect_contacts(b, options(1.2), {});
+  ASSERT_EQ(contacts.size(), 1U);
+  EXPECT_EQ(contacts[0].kind, ContactKind::vertex_edge);
+  EXPECT_GE(contacts[0].alternative_master, 0);
+  for (const int v : {contacts[0].slave, contacts[0].alternative_slave})
+    EXPECT_LT(b.position[static_cast<std::size_t>(v)].norm(), 1e-15); // a corner at the origin
+}
+
+TEST(ContactDetection, FourCornersWhereTwoJointsCrossMakeTwoAngleContacts) {
+  // Four blocks around the point where two straight joints cross (at 20 and 110 degrees, away
+  // from the origin, so that the ends of the edges leaving the point are one point only to
+  // rounding), each side split where a math edge would cross it. Neighbours touch along
+  // their faces (edge-to-edge contacts); the opposite corners, two pairs, touch at the
+  // point: one angle-to-angle contact each. A corner against an edge that leaves the point
+  // (its parameter 1e-16 from the end) is that same contact: counted as an angle-to-edge
+  // contact too, it gave two corners four springs whose friction changed each other's normal
+  // force from solve to solve (examples/02_jointed_slope, the crossings of the bedding and
+  // the cross joints).
+  const Point2 o(46.1081, 19.218);
+  const double a = 20.0 * pi / 180.0;
+  const Point2 u(std::cos(a), std::sin(a));
+  const Point2 v(-std::sin(a), std::cos(a));
+  auto at = [&](double s, double t) { return Point2(o + s * u + t * v); };
+  // Each block: the crossing point, then out along one joint, around, back along the other
+  // (counter-clockwise), its two sides split at 0.45 and 0.3.
+  const ContactBoundary b =
+      boundary_of({{at(0, 0), at(0.45, 0), at(1, 0), at(1, 1), at(0, 1), at(0, 0.3)},
+                   {at(0, 0), at(0, 0.45), at(0, 1), at(-1, 1), at(-1, 0), at(-0.3, 0)},
+                   {at(0, 0), at(-0.45, 0), at(-1, 0), at(-1, -1), at(0, -1), at(0, -0.3)},
+                   {at(0, 0), at(0, -0.45), at(0, -1), at(1, -1), at(1, 0), at(0.3, 0)}});
+  const auto contacts = detect_contacts(b, options(1.2), {});
+  EXPECT_EQ(count(contacts, ContactKind::vertex_edge), 2);
+  for (const ContactCandidate& c : contacts) {
+    if (c.kind == ContactKind::vertex_edge) {
+      EXPECT_GE(c.alternative_master, 0) << "an angle-to-angle contact, not a corner on an edge";
+    }
+  }
+}
+
 TEST(ContactDetection, TheTwoFacesOfACrackAreInContact) {
   // A slit loop (a crack inside a body, its faces split in three): out along the crack and
   // back. The faces' middle pieces touch; the pieces at each tip share the tip vertex (in
