@@ -262,6 +262,10 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   detection.distance = 2.0 * max_step_displacement;
   detection.penetration = 0.1 * detection.distance;
   held_open_penetration_ = 1e-3 * max_step_displacement;
+  // A body at rest moves by about a unit in the last place of the coordinates in a step, and
+  // the gaps and shear offsets computed from them carry as much: a decision on less would
+  // be a coin toss.
+  rounding_ = rounding_length(boundary_);
   // In the order of their keys, not of the hash table: which of two carried contacts a
   // transfer finds first must not depend on the table's history (a restarted run has
   // another), or a restart would not continue the run exactly.
@@ -412,7 +416,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     // worth of penetration first).
     bool same = false;
     const Carried* state = carried_state(g.key, p.slave_edge, p.master, g.edge, &same);
-    const bool touching = *std::min_element(g0.begin(), g0.end()) <= 0.0;
+    const bool touching = *std::min_element(g0.begin(), g0.end()) <= rounding_;
     ContactMode mode = ContactMode::open;
     int sign = 0;
     double normal_force = 0.0;
@@ -743,8 +747,13 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     bool breaks = false;
     int sign = lead.slide_sign;
     const bool partial = g.edge && !lead.bonded; // springs only on the pressed part
+    // Gaps, motions and the forces of springs stretched by them that are within the rounding
+    // of the coordinates change no mode: at rest they are noise, and a contact at a tie (a
+    // joint face touching with no force, a contact sitting at the limit of friction) would
+    // flip on every solve. The mode it is in holds it there.
+    const double noise = stiffness * rounding_;
     if (before == ContactMode::open) {
-      if (partial ? pressed.found : gap < 0.0) {
+      if (partial ? pressed.found : gap < -rounding_) {
         // Shi 8.2: open -> slide when the shear the lock would take, the step's tangential
         // motion against a spring of the same stiffness, beats friction on the normal force
         // the penetration gives; open -> lock otherwise.
@@ -757,7 +766,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
           after = ContactMode::lock;
         }
       }
-    } else if (partial ? !pressed.found : normal < -tension) {
+    } else if (partial ? !pressed.found : normal < -tension - noise) {
       after = ContactMode::open; // lifted off, or tension beyond the strength of a bond
       breaks = lead.bonded;
     } else if (before == ContactMode::lock) {
@@ -765,14 +774,14 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       // sits at the limit of friction (locked it needs more than friction, sliding it turns
       // back against it): it stays locked for the rest of the step (a held slide could push
       // along its motion and feed energy in; a lock only holds).
-      if (std::abs(shear) > limit && lead.slips >= options_.chatter_limit && !hold_shear_) {
+      if (std::abs(shear) > limit + noise && lead.slips >= options_.chatter_limit && !hold_shear_) {
         ++counters_.chatter_holds;
-      } else if (std::abs(shear) > limit && !hold_shear_) {
+      } else if (std::abs(shear) > limit + noise && !hold_shear_) {
         after = ContactMode::slide;
         sign = shear > 0.0 ? 1 : -1;
         breaks = lead.bonded;
       }
-    } else if (motion * lead.slide_sign < 0.0) {
+    } else if (motion * lead.slide_sign < -rounding_) {
       // The sliding reversed against its friction: it sticks. Without any friction or
       // cohesion nothing can hold it: it keeps sliding, the other way (a lock would let go
       // at once and the two would alternate for ever).

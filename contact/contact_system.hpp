@@ -279,6 +279,8 @@ private:
   int last_changed_ = 0;
   bool hold_shear_ = false;
   double held_open_penetration_ = 0.0; ///< deepest a contact held open may penetrate, m
+  /// Rounding of the coordinates of the step, m: gaps and motions within it change no mode.
+  double rounding_ = 0.0;
   ContactCounters counters_;
 };
 

@@ -36,7 +36,8 @@ struct ContactBoundary {
 };
 
 /// The rounding of the coordinates of @p boundary: 512 units in the last place of its largest
-/// coordinate, m. Points closer than this are one point.
+/// coordinate, m. Points closer than this are one point, and gaps and motions smaller than it
+/// decide no contact mode (a body at rest moves by about one unit in a step).
 [[nodiscard]] double rounding_length(const ContactBoundary& boundary);
 
 /// What a contact is in Shi's entrance theory.
