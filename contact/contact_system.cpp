@@ -980,7 +980,7 @@ double ContactSystem::max_penetration() const {
   double worst = 0.0;
   for (const ContactPoint& p : points_) {
     if (closed(p.mode))
-      worst = std::max(worst, -p.gap);
+      worst = std::max(worst, p.offset - p.gap);
   }
   return worst;
 }

@@ -182,7 +182,8 @@ public:
 
   /// Closed contact points now.
   [[nodiscard]] int n_closed() const;
-  /// Largest penetration of a closed contact after the last solve, m.
+  /// Largest penetration of the springs of a closed contact after the last solve (offset -
+  /// gap: an angle contact found already penetrating counts from its offset), m.
   [[nodiscard]] double max_penetration() const;
   [[nodiscard]] const ContactCounters& counters() const noexcept { return counters_; }
   [[nodiscard]] const ContactOptions& options() const noexcept { return options_; }
