@@ -15,31 +15,11 @@
 namespace nmm {
 namespace {
 
+using testing::contact_for;
 using testing::elastic;
 using testing::line;
 
 constexpr double pi = 3.14159265358979323846;
-
-/// A contact system with one strength for every boundary edge; joint faces are bonded when
-/// @p bonded (an intact joint holds until its strength is exceeded).
-std::unique_ptr<ContactSystem> contact_for(const Model& model,
-                                           double penalty,
-                                           const JointStrength& strength,
-                                           bool bonded = false) {
-  std::vector<std::vector<JointStrength>> strengths;
-  std::vector<std::vector<bool>> bonds;
-  for (const BoundaryLoop& loop : model.loops) {
-    strengths.emplace_back(loop.edges.size(), strength);
-    std::vector<bool> b;
-    for (const BoundaryEdge& e : loop.edges)
-      b.push_back(bonded && e.joint >= 0);
-    bonds.push_back(std::move(b));
-  }
-  ContactOptions options;
-  options.penalty = penalty;
-  options.spring_length = model.scale;
-  return std::make_unique<ContactSystem>(options, std::move(strengths), std::move(bonds));
-}
 
 TEST(Goodman, EdgeToEdgeContactIsTheGoodmanJointElement) {
   // Two unit squares joined by an intact (locked) joint along y = 1, on a conforming math

@@ -3,6 +3,7 @@
 // tests: rectangles, regular meshes, materials, and a model + stepper in a few lines.
 #pragma once
 
+#include "contact/contact_system.hpp"
 #include "manifold/boundary_conditions.hpp"
 #include "manifold/model.hpp"
 #include "mesh/cover_mesher.hpp"
@@ -14,6 +15,7 @@
 #include <Eigen/LU>
 
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -130,6 +132,27 @@ inline Setup make_setup(std::vector<MaterialRegion> regions,
   const std::size_t n = regions.size();
   return make_setup(std::move(regions), std::move(curves), std::move(joints), math, size,
                     std::vector<ElasticMaterial>(n, material), order, kinds);
+}
+
+/// A contact system with one strength for every boundary edge; joint faces are bonded when
+/// @p bonded (an intact joint holds until its strength is exceeded).
+inline std::unique_ptr<ContactSystem> contact_for(const Model& model,
+                                                  double penalty,
+                                                  const JointStrength& strength,
+                                                  bool bonded = false) {
+  std::vector<std::vector<JointStrength>> strengths;
+  std::vector<std::vector<bool>> bonds;
+  for (const BoundaryLoop& loop : model.loops) {
+    strengths.emplace_back(loop.edges.size(), strength);
+    std::vector<bool> b;
+    for (const BoundaryEdge& e : loop.edges)
+      b.push_back(bonded && e.joint >= 0);
+    bonds.push_back(std::move(b));
+  }
+  ContactOptions options;
+  options.penalty = penalty;
+  options.spring_length = model.scale;
+  return std::make_unique<ContactSystem>(options, std::move(strengths), std::move(bonds));
 }
 
 } // namespace nmm::testing
