@@ -15,9 +15,7 @@ reference. An entry may change its case for the run, as a list of (text, replace
 applied to the case file, each text found exactly once; the edited case is written beside a
 copy of the example's geometry. Examples 05 and 06 run that way on a cover mesh four times
 coarser than theirs (one step of their fine meshes takes 6-12 s; their right answers are
-checked by the slow tests against closed forms). Example 02 is for `nmm mesh`: its one static
-step with contact completes only after all ten cuts (max_step_cuts), too close to the edge
-to store.
+checked by the slow tests against closed forms).
 """
 
 import json
@@ -35,6 +33,7 @@ OUT = os.path.join(ROOT, "tests", "regression", "data", "example_references.json
 COARSE = [("size = 0.01 ", "size = 0.04 ")]  # 05 and 06: a cover size four times theirs
 EXAMPLES = [
     ("01_cantilever/case.toml", 1),
+    ("02_jointed_slope/case.toml", 5),
     ("03_block_on_incline/case.toml", 50),
     ("04_dam_on_jointed_foundation/case.toml", 12),
     ("05_plate_with_hole/case.toml", 1, COARSE),
