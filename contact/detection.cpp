@@ -273,15 +273,20 @@ private:
     const Point2& c = b_.position[at(m)];
     const Point2 edge = b_.position[at(b_.next[at(m)])] - c;
     const double t = (p - c).dot(edge) / edge.squaredNorm();
-    // The ends are angle-to-angle contacts, and so is a vertex at an end to rounding: where
-    // joints cross, the corners of the four sides meet at one point, and an angle-to-edge
-    // contact of a corner against each edge leaving that point (their ends off by a unit in
-    // the last place) doubled the one spring of the angle-to-angle contact: four springs held
-    // two corners, and the friction on each changed the normal force of the others from one
-    // solve to the next (examples/02_jointed_slope: normal forces alternating between 4 and
-    // 17 kN for 50 solves).
+    // The ends are angle-to-angle contacts, and so is a vertex at a corner end to rounding:
+    // where joints cross, the corners of the four sides meet at one point, and an
+    // angle-to-edge contact of a corner against each edge leaving that point (their ends off
+    // by a unit in the last place) doubled the one spring of the angle-to-angle contact: four
+    // springs held two corners, and the friction on each changed the normal force of the
+    // others from one solve to the next (examples/02_jointed_slope: normal forces alternating
+    // between 4 and 17 kN for 50 solves). An end that is a straight point (a side split where
+    // a math edge crosses it) is no corner: a vertex there presses on the side, and keeps its
+    // angle-to-edge contact against the piece it projects into (examples/10: the block's
+    // pivot, point 7, on a split of the foundation's top one unit in the last place away; the
+    // paper's Table 1 contact).
     const double length = std::sqrt(edge.squaredNorm());
-    if (t * length <= rounding_ || (1.0 - t) * length <= rounding_)
+    if (t <= 0.0 || t >= 1.0 || (t * length <= rounding_ && !flat(m)) ||
+        ((1.0 - t) * length <= rounding_ && !flat(b_.next[at(m)])))
       return;
     const Point2 n = b_.outward_normal(m);
     const double gap = n.dot(p - c);
@@ -366,10 +371,14 @@ private:
         const Point2& c0 = b_.position[at(e)];
         const Point2 edge = b_.position[at(b_.next[at(e)])] - c0;
         const double t = (b_.position[at(corner)] - c0).dot(edge) / edge.squaredNorm();
-        // Not at the edge's far end (to rounding): a corner there meets the corner at that
-        // end (the angle-to-angle contact of the two), as in test_vertex_edge().
-        const double far = e == straight ? 1.0 - t : t;
-        if (t < 0.0 || t > 1.0 || far * std::sqrt(edge.squaredNorm()) <= rounding_)
+        // Not at the edge's far end (to rounding) when that end is a corner: a corner there
+        // meets the corner at that end (the angle-to-angle contact of the two), as in
+        // test_vertex_edge().
+        const bool forward = e == straight;
+        const double far = forward ? 1.0 - t : t;
+        const int far_end = forward ? b_.next[at(e)] : e;
+        if (t < 0.0 || t > 1.0 ||
+            (far * std::sqrt(edge.squaredNorm()) <= rounding_ && !flat(far_end)))
           continue;
         if (std::min(t, 1.0 - t) > best_centrality) {
           best_centrality = std::min(t, 1.0 - t);
