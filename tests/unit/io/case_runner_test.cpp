@@ -374,25 +374,15 @@ TEST_F(CaseRunner, GmshMathMeshAndOrderOneRunToo) {
 }
 
 TEST_F(CaseRunner, PressureOnAnEdgeTiltedByRoundingLoadsItsWholeLengthOnAGmshCoverMesh) {
-  // The top edge ends one unit in the last place below y = 1 at x = 1, as a .geo computing
+  // The top edge ends one unit in the last place below y = 1 at x = 2, as a .geo computing
   // 1 - cos(pi/2) makes it. gmsh rounds the nodes it puts on that edge, half of them below
-  // it; before 2026-11-26 the top right half then had no elements and got no pressure (the
-  // top right moved 0.15 mm instead of 1 mm, with no error).
-  testing::write_text(dir() / "tilted.geo", R"(Point(1) = {0, 0, 0};
-Point(2) = {1, 0, 0};
-Point(3) = {1, 0.9999999999999999, 0};
-Point(4) = {0, 1, 0};
-Line(1) = {1, 2};
-Line(2) = {2, 3};
-Line(3) = {3, 4};
-Line(4) = {4, 1};
-Curve Loop(1) = {1, 2, 3, 4};
-Plane Surface(1) = {1};
-Physical Surface("rock") = {1};
-Physical Curve("base") = {1};
-Physical Curve("sides") = {2, 4};
-Physical Curve("top") = {3};
-)");
+  // it; before 2026-11-26 part of the top then had no elements and got no pressure (on a
+  // 1 m square the top right moved 0.15 mm instead of 1 mm, with no error).
+  // plate.geo (2 m x 1 m) with its top right corner one unit in the last place low.
+  testing::write_text(dir() / "tilted.geo",
+                      replaced(testing::plate_geo, "Point(3) = {2, 1, 0};",
+                               "Point(3) = {2, 0.9999999999999999, 0};") +
+                          "Physical Curve(\"top\") = {3};\nPhysical Curve(\"sides\") = {4};\n");
   const fs::path file = write_case(dir(), R"(geometry = "tilted.geo"
 [cover_mesh]
 kind = "gmsh"
@@ -408,6 +398,9 @@ fix = "y"
 [[boundary]]
 curve = "sides"
 fix = "x"
+[[boundary]]
+curve = "right"
+fix = "x"
 [[load]]
 curve = "top"
 pressure = 1.0e6
@@ -419,7 +412,7 @@ name = "left"
 point = [0.2, 1.0]
 [[monitor]]
 name = "right"
-point = [0.8, 1.0]
+point = [1.8, 1.0]
 [output]
 dir = "out"
 )");
