@@ -313,6 +313,7 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   const double size = box.is_empty() ? 1.0 : std::max(box.size().x(), box.size().y());
   const double tolerance = 1e-9 * size;
   add_scale_warnings(size);
+  add_unused_curve_warnings();
 
   Scene scene;
   // Supports.
@@ -509,6 +510,43 @@ void CaseAnalysis::add_scale_warnings(double model_size) {
              " m² near " + point_text(covers.loops[at(block.loops.front())].vertices.front(), 6) +
              ": such a block moves right but its stress is coarse; use a size below " +
              number_text(std::sqrt(block.area)) + " m (or model = \"dda\" for rigid-like blocks)");
+  }
+}
+
+void CaseAnalysis::add_unused_curve_warnings() {
+  const PhysicalMesh& physical = geometry_.physical;
+  std::vector<char> used(physical.curves.size(), 0);
+  for (const int c : geometry_.joint_curves)
+    used[at(c)] = 1;
+  const auto mark = [&](const std::string& name) {
+    const int c = physical.find_curve(name);
+    if (c >= 0)
+      used[at(c)] = 1;
+  };
+  for (const BoundarySpec& b : spec_.boundaries)
+    if (b.is_curve)
+      mark(b.target);
+  for (const LoadSpec& load : spec_.loads)
+    if (load.kind == LoadKind::traction || load.kind == LoadKind::pressure)
+      mark(load.target);
+  for (std::size_t c = 0; c < physical.curves.size(); ++c) {
+    if (used[c] != 0)
+      continue;
+    // Inside a block: the same block on both sides of a piece (a curve on a free boundary
+    // or along an interface of two blocks is a name for ParaView or scripts).
+    for (const CurvePiece& piece : model_.curve_pieces[c]) {
+      if (piece.left_block < 0 || piece.left_block != piece.right_block)
+        continue;
+      const std::string& name = physical.curves[c].name;
+      warnings_.push_back(geometry_name(spec_) + ": Physical Curve " + in_quotes(name) +
+                          " runs through the material near " + point_text(piece.a, 6) +
+                          " but is no joint, [[boundary]] or [[load]] of " +
+                          spec_.file.filename().string() +
+                          ", so it does not cut the rock; add [joints." + name +
+                          "] if it is a joint (a curve named only for ParaView or scripts "
+                          "may stay as it is)");
+      break;
+    }
   }
 }
 

@@ -99,6 +99,9 @@ private:
   /// "Checks across tables and warnings"): a fixed time step longer than Shi's for
   /// max_step_displacement, nmm blocks much smaller than the math triangles.
   void add_scale_warnings(double model_size);
+  /// A warning for every Physical Curve that runs through the inside of a block but is no
+  /// joint, [[boundary]] or [[load]] of the case: a joint the case forgot does not cut.
+  void add_unused_curve_warnings();
 
   CaseSpec spec_;
   CaseGeometry geometry_;

@@ -255,6 +255,26 @@ TEST_F(CaseRunner, ScaleWarningsGiveTheLineAndTheFigures) {
               "size = 20 m), the smallest 2 m²", "use a size below 1.414 m"});
 }
 
+TEST_F(CaseRunner, CurveThroughTheRockThatIsNoJointIsWarnedAbout) {
+  // plate.geo with a curve across the inside ("crack") and one on the free top edge ("top").
+  testing::write_text(dir() / "cracked.geo", std::string(testing::plate_geo) + R"(
+Point(9) = {0.5, 0.3, 0};
+Point(10) = {1.5, 0.7, 0};
+Line(6) = {9, 10};
+Physical Curve("crack") = {6};
+Physical Curve("top") = {3};
+)");
+  const std::string text = replaced(plate_case, "plate.geo", "cracked.geo");
+  const CaseAnalysis forgotten(read_case_file(case_file(text)));
+  ASSERT_EQ(forgotten.warnings().size(), 1u) << "the top edge is a free boundary: no warning";
+  expect_all(forgotten.warnings()[0],
+             {"cracked.geo: Physical Curve \"crack\" runs through the material near (",
+              "is no joint, [[boundary]] or [[load]] of case.toml", "add [joints.crack]"});
+  const CaseAnalysis joint(
+      read_case_file(case_file(text + "[joints.crack]\nfriction_angle = 30.0\n")));
+  EXPECT_TRUE(joint.warnings().empty()) << joint.warnings().front();
+}
+
 TEST_F(CaseRunner, MathMeshTooLargeForTheMemoryIsRefusedWithTheFiguresBeforeItIsBuilt) {
   // 2 cm triangles on the 2 m x 1 m plate: about 11500 triangles, estimated at 95 MB for
   // order 0 (io/case_runner.cpp, memory_estimate). Under a limit of 80 MB it is refused at
