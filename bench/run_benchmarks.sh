@@ -23,3 +23,7 @@ python3 "$root/bench/block_bench.py" --work "$root/build/block-bench" | tee "$ou
 echo "== work_precision"
 python3 "$root/bench/work_precision.py" --work "$root/build/work-precision" --pictures "$out" \
   | tee "$out/work_precision.txt"
+# Numerical stress tests too long for the test suite, each with its pass criterion (issue 8;
+# docs/benchmarks.md "Numerical stress tests"). Exit code 1 when one fails, as two do today.
+echo "== stress"
+python3 "$root/bench/stress.py" --work "$root/build/stress" | tee "$out/stress.txt" || true
