@@ -148,29 +148,6 @@ double offset_at(const std::vector<std::pair<double, double>>& offsets, double u
 
 } // namespace
 
-/// The linearised kinematics of one contact point (Shi 3.4-3.5; eq. 3.12-3.16, 3.21-3.24):
-/// normal gap g = g0 + hn . d and shear displacement s = s0 + hs . d on the coupled unknowns.
-struct ContactSystem::Kinematics {
-  std::vector<int> dofs;
-  Eigen::VectorXd hn;
-  Eigen::VectorXd hs;
-  double g0 = 0.0;
-  double s0 = 0.0;
-
-  [[nodiscard]] double gap(const Eigen::VectorXd& raw) const {
-    double g = g0;
-    for (std::size_t j = 0; j < dofs.size(); ++j)
-      g += hn(static_cast<Eigen::Index>(j)) * raw(dofs[j]);
-    return g;
-  }
-  [[nodiscard]] double tangential(const Eigen::VectorXd& raw) const {
-    double s = 0.0;
-    for (std::size_t j = 0; j < dofs.size(); ++j)
-      s += hs(static_cast<Eigen::Index>(j)) * raw(dofs[j]);
-    return s;
-  }
-};
-
 ContactSystem::ContactSystem(ContactOptions options,
                              std::vector<std::vector<JointStrength>> strength_of_edge,
                              std::vector<std::vector<bool>> bonded_edge)
@@ -489,6 +466,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   start_.points = points_;
   start_.broken = broken_;
   start_.bonds_broken = counters_.bonds_broken;
+  kinematics_cache_.assign(points_.size() + 3 * groups_.size(), CachedKinematics{});
   shapes_.clear();
   shape_of_element_.assign(static_cast<std::size_t>(model.n_elements()), -1);
   for (const ContactPoint& p : points_) {
@@ -600,20 +578,38 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   return k;
 }
 
-double ContactSystem::gap_at(const Model& model,
-                             const Group& g,
-                             double u,
-                             const Eigen::VectorXd& raw) const {
+const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& model,
+                                                                  const ContactPoint& p,
+                                                                  std::size_t slot) const {
+  NMM_ASSERT(slot < kinematics_cache_.size(), "a kinematics slot of this step");
+  CachedKinematics& c = kinematics_cache_[slot];
+  if (!c.valid || c.slave_edge != p.slave_edge || c.master != p.master || c.slave != p.slave ||
+      c.anchor != p.anchor || c.offset != p.offset) {
+    c.kinematics = kinematics(model, p);
+    c.valid = true;
+    c.slave_edge = p.slave_edge;
+    c.master = p.master;
+    c.slave = p.slave;
+    c.anchor = p.anchor;
+    c.offset = p.offset;
+  }
+  return c.kinematics;
+}
+
+double ContactSystem::gap_at(
+    const Model& model, const Group& g, int sample, double u, const Eigen::VectorXd& raw) const {
   ContactPoint p = points_[at(g.first)];
   const Point2& a = boundary_.position[at(p.slave_edge)];
   const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
   p.slave = a + u * (d - a);
-  return kinematics(model, p).gap(raw);
+  p.anchor = 0.0; // the gap does not depend on it: one slot for the whole step
+  const auto group = static_cast<std::size_t>(&g - groups_.data());
+  return cached_kinematics(model, p, points_.size() + 3 * group + at(sample)).gap(raw);
 }
 
 std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
   const ContactPoint& p = points_[at(i)];
-  return kinematics(model, p).dofs;
+  return cached_kinematics(model, p, at(i)).dofs;
 }
 
 bool ContactSystem::contribution(const Model& model,
@@ -622,7 +618,7 @@ bool ContactSystem::contribution(const Model& model,
                                  Eigen::VectorXd& load) const {
   const ContactPoint& p = points_[at(i)];
   // One kinematics: its unknowns are point_dofs(i), in that order.
-  const Kinematics k = kinematics(model, p);
+  const Kinematics& k = cached_kinematics(model, p, at(i));
   const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
   stiffness.setZero(n, n);
   load.setZero(n);
@@ -674,7 +670,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     measure.assign(at(g.count), Measure{});
     for (int q = 0; q < g.count; ++q) {
       ContactPoint& p = points_[at(g.first + q)];
-      const Kinematics k = kinematics(model, p);
+      const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
       const double ds = k.tangential(raw);
       measure[at(q)] = {k.gap(raw), k.s0 + ds, ds};
       p.gap = measure[at(q)].gap + p.offset;
@@ -726,10 +722,10 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         bearing += points_[at(g.first + q)].stiffness * std::max(0.0, -measure[at(q)].gap);
     }
     if (g.edge) {
-      std::vector<double> samples{gap_at(model, g, g.lo, raw)};
+      std::vector<double> samples{gap_at(model, g, 0, g.lo, raw)};
       if (gauss_ == 3)
-        samples.push_back(gap_at(model, g, 0.5 * (g.lo + g.hi), raw));
-      samples.push_back(gap_at(model, g, g.hi, raw));
+        samples.push_back(gap_at(model, g, 1, 0.5 * (g.lo + g.hi), raw));
+      samples.push_back(gap_at(model, g, 2, g.hi, raw));
       const GapProfile profile(g.lo, g.hi, samples);
       pressed = profile.negative();
       deepest = -*std::min_element(samples.begin(), samples.end());
@@ -811,7 +807,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       if (!closed(before) && closed(after)) {
         // Locked at its entrance position (Shi eq. 3.4-3.6): where the gap crosses zero, a
         // fraction t0 of the step's tangential motion along the edge.
-        const Kinematics k = kinematics(model, p);
+        const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
         const double t0 = k.g0 > 0.0 ? std::clamp(k.g0 / (k.g0 - m.gap), 0.0, 1.0) : 0.0;
         p.anchor = projection(p.master, p.slave) + t0 * m.ds / length;
       }
@@ -959,7 +955,7 @@ void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
       double anchor = p.anchor;
       if (p.mode == ContactMode::slide) {
         // The next lock anchors where the slave point ends up on the edge.
-        const Kinematics k = kinematics(model, p);
+        const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
         const double l = (boundary_.position[at(boundary_.next[at(p.master)])] -
                           boundary_.position[at(p.master)])
                              .norm();

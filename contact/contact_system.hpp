@@ -202,7 +202,41 @@ public:
   [[nodiscard]] int last_changed() const noexcept { return last_changed_; }
 
 private:
-  struct Kinematics;
+  /// The linearised kinematics of one contact point (Shi 3.4-3.5; eq. 3.12-3.16, 3.21-3.24):
+  /// normal gap g = g0 + hn . d and shear displacement s = s0 + hs . d on the coupled
+  /// unknowns.
+  struct Kinematics {
+    std::vector<int> dofs;
+    Eigen::VectorXd hn;
+    Eigen::VectorXd hs;
+    double g0 = 0.0;
+    double s0 = 0.0;
+
+    [[nodiscard]] double gap(const Eigen::VectorXd& raw) const {
+      double g = g0;
+      for (std::size_t j = 0; j < dofs.size(); ++j)
+        g += hn(static_cast<Eigen::Index>(j)) * raw(dofs[j]);
+      return g;
+    }
+    [[nodiscard]] double tangential(const Eigen::VectorXd& raw) const {
+      double s = 0.0;
+      for (std::size_t j = 0; j < dofs.size(); ++j)
+        s += hs(static_cast<Eigen::Index>(j)) * raw(dofs[j]);
+      return s;
+    }
+  };
+  /// Kinematics of a point, kept with what they were computed from: a point's are used by
+  /// its springs, its mode decision, its lift-off gaps and the transfer, several times per
+  /// open-close iteration, and change only when the point moves (lift-off) or re-anchors.
+  struct CachedKinematics {
+    bool valid = false;
+    int slave_edge = -1;
+    int master = -1;
+    Point2 slave = Point2::Zero();
+    double anchor = 0.0;
+    double offset = 0.0;
+    Kinematics kinematics;
+  };
   /// A contact: one angle point, or the Gauss points of one edge-to-edge pair, deciding
   /// their mode together.
   struct Group {
@@ -240,12 +274,18 @@ private:
   };
 
   [[nodiscard]] Kinematics kinematics(const Model& model, const ContactPoint& p) const;
+  /// kinematics(model, p) through slot @p slot of the cache (slots: the points, then three
+  /// gap samples per group); the same numbers, computed again only when p's slave point,
+  /// edges, anchor or offset differ from the slot's.
+  [[nodiscard]] const Kinematics&
+  cached_kinematics(const Model& model, const ContactPoint& p, std::size_t slot) const;
   /// The shape of @p element at the start of the step (built by begin_step() for the
   /// elements of every contact point's edges).
   [[nodiscard]] const ElementShape& shape(int element) const;
-  /// Normal gap at slave parameter u of edge group g after the step displacement raw.
-  [[nodiscard]] double
-  gap_at(const Model& model, const Group& g, double u, const Eigen::VectorXd& raw) const;
+  /// Normal gap at slave parameter u of edge group g after the step displacement raw; @p sample
+  /// (0 at lo, 1 in the middle, 2 at hi) is its cached_kinematics() slot of the group.
+  [[nodiscard]] double gap_at(
+      const Model& model, const Group& g, int sample, double u, const Eigen::VectorXd& raw) const;
   /// Places the Gauss points of edge group g on [from, to] (anchors from @p anchor_of(u)).
   template <class AnchorOf> void place(Group& g, double from, double to, const AnchorOf& anchor_of);
   /// Anchor parameter on the master of the projection of slave point @p x.
@@ -266,6 +306,8 @@ private:
   int gauss_ = 2;
   std::vector<Group> groups_;
   std::vector<ContactPoint> points_;
+  /// cached_kinematics() slots, emptied by begin_step() (the geometry moved).
+  mutable std::vector<CachedKinematics> kinematics_cache_;
   /// Closed contacts of the last step, by key.
   std::unordered_map<std::uint64_t, Carried> carried_;
   /// Broken bonds, by contact key (a broken joint never heals).
