@@ -15,11 +15,12 @@
 //       the pattern and symbolic analysis), then K measured steps (default 3; fewer when
 //       the case's end_time comes first); nothing is written. The case's `steps` is ignored.
 //
-// After the steps, in both modes: the bare numeric factorisation + solve of the last step's
-// matrix (its own symbolic analysis and a first factorisation + solve, not timed), as many
-// times as steps were measured and more while they take under 0.5 s, and the mean. A block model
-// refactorises several times per step (open-close iterations), so the floor of its step is the bare
-// time times the factorisations per step (printed).
+// After each measured step, in both modes: the bare numeric factorisation + solve of the
+// matrix the step ended with, as many times as the step factorised (at least once), by a
+// CHOLMOD solver of its own (its symbolic analysis and a first factorisation + solve of
+// each new pattern not timed); the mean. Interleaved with the steps, so that both see the
+// same load. A block model refactorises several times per step (open-close iterations), so
+// the floor of its step is the bare time times the factorisations per step (printed).
 // --json adds one line per run, a JSON object (the figures of bench/scaling.py).
 #include "io/case_file.hpp"
 #include "io/case_runner.hpp"
@@ -52,7 +53,60 @@ namespace {
 using nmm::bench::Clock;
 using nmm::bench::since;
 
-/// What the measured steps did: counters before and after them, and their wall time.
+/// The bare floor of a step's linear solve: CHOLMOD numeric factorisation + solve of the
+/// matrix a step ended with, by a CholmodSolver of its own configured as the stepper's,
+/// measured right after the step so that both see the same load on the machine.
+class BareFloor {
+public:
+  /// Factorises and solves @p matrix @p times, timed; before that, when its pattern is new
+  /// to this solver, its symbolic analysis and one factorisation + solve, not timed (the
+  /// stepper's factorisations reuse warm memory).
+  void measure(const nmm::SparseMatrix& matrix, int times) {
+    if (!has_pattern(matrix)) {
+      if (solver_.analyze(matrix) != nmm::SolveStatus::ok)
+        throw std::runtime_error("bench_step: the symbolic analysis of the last matrix failed");
+      outer_.assign(matrix.outerIndexPtr(), matrix.outerIndexPtr() + matrix.outerSize() + 1);
+      inner_.assign(matrix.innerIndexPtr(), matrix.innerIndexPtr() + matrix.nonZeros());
+      factor_and_solve(matrix);
+    }
+    const Clock::time_point t = Clock::now();
+    for (int i = 0; i < times; ++i)
+      factor_and_solve(matrix);
+    seconds_ += since(t);
+    count_ += times;
+  }
+  /// Mean of one factorisation + solve, s.
+  [[nodiscard]] double seconds() const { return seconds_ / std::max(count_, 1); }
+  [[nodiscard]] int count() const { return count_; }
+  /// CHOLMOD's count for the factorisation of the last pattern.
+  [[nodiscard]] double flops() const { return solver_.factor_flops(); }
+
+private:
+  [[nodiscard]] bool has_pattern(const nmm::SparseMatrix& matrix) const {
+    return matrix.isCompressed() &&
+           outer_.size() == static_cast<std::size_t>(matrix.outerSize()) + 1 &&
+           inner_.size() == static_cast<std::size_t>(matrix.nonZeros()) &&
+           std::equal(outer_.begin(), outer_.end(), matrix.outerIndexPtr()) &&
+           std::equal(inner_.begin(), inner_.end(), matrix.innerIndexPtr());
+  }
+  void factor_and_solve(const nmm::SparseMatrix& matrix) {
+    if (rhs_.size() != matrix.rows())
+      rhs_ = Eigen::VectorXd::Ones(matrix.rows());
+    if (solver_.factorize(matrix) != nmm::SolveStatus::ok ||
+        solver_.solve(rhs_, x_) != nmm::SolveStatus::ok)
+      throw std::runtime_error("bench_step: the bare factorisation of the last matrix failed");
+  }
+  nmm::CholmodSolver solver_;
+  std::vector<int> outer_;
+  std::vector<int> inner_;
+  Eigen::VectorXd rhs_;
+  Eigen::VectorXd x_;
+  double seconds_ = 0.0;
+  int count_ = 0;
+};
+
+/// What the measured steps did: counters before and after them, their wall time, and the
+/// bare floor measured after each.
 struct MeasuredSteps {
   nmm::StepperCounters before;
   nmm::StepperCounters after;
@@ -60,49 +114,36 @@ struct MeasuredSteps {
   nmm::SolverCounters solver_after;
   int steps = 0;
   double per_step = 0.0; ///< s, wall clock around step()
+  double bare = 0.0;     ///< s, mean of one bare factorisation + solve
+  int bare_count = 0;
+  double bare_flops = 0.0;
 };
 
-/// Takes @p steps steps (fewer if @p until is reached first) and measures them.
+/// Takes @p steps steps (fewer if @p until is reached first) and measures them; after each,
+/// as many bare factorisations + solves of its last matrix as the step factorised (at
+/// least one).
 MeasuredSteps measure_steps(nmm::TimeStepper& stepper, int steps, double until) {
   MeasuredSteps m;
   m.before = stepper.counters();
   m.solver_before = stepper.solver_counters();
-  const Clock::time_point t = Clock::now();
-  for (; m.steps < steps && stepper.time() < until * (1.0 - 1e-12); ++m.steps)
+  BareFloor floor;
+  double seconds = 0.0;
+  for (; m.steps < steps && stepper.time() < until * (1.0 - 1e-12); ++m.steps) {
+    const long factorizations = stepper.solver_counters().factorizations;
+    const Clock::time_point t = Clock::now();
     (void)stepper.step(until);
-  m.per_step = since(t) / std::max(m.steps, 1);
+    seconds += since(t);
+    floor.measure(
+        stepper.last_matrix(),
+        static_cast<int>(std::max(1L, stepper.solver_counters().factorizations - factorizations)));
+  }
+  m.per_step = seconds / std::max(m.steps, 1);
   m.after = stepper.counters();
   m.solver_after = stepper.solver_counters();
+  m.bare = floor.seconds();
+  m.bare_count = floor.count();
+  m.bare_flops = floor.flops();
   return m;
-}
-
-/// The bare floor of a step's linear solve.
-struct BareFloor {
-  double seconds = 0.0; ///< mean of one numeric factorisation + one solve
-  double flops = 0.0;   ///< CHOLMOD's count for the factorisation
-};
-
-/// Numeric factorisation + solve of @p matrix after its own symbolic analysis and one
-/// factorisation + solve (neither timed: the stepper's factorisations reuse warm memory),
-/// with a fresh CholmodSolver configured as the stepper's: the mean of at least @p repeats,
-/// and of more (up to 200) while they have taken less than half a second.
-BareFloor measure_bare_floor(const nmm::SparseMatrix& matrix, int repeats) {
-  nmm::CholmodSolver bare;
-  const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(matrix.rows());
-  Eigen::VectorXd x;
-  auto factor_and_solve = [&] {
-    if (bare.factorize(matrix) != nmm::SolveStatus::ok ||
-        bare.solve(rhs, x) != nmm::SolveStatus::ok)
-      throw std::runtime_error("bench_step: the bare factorisation of the last matrix failed");
-  };
-  if (bare.analyze(matrix) != nmm::SolveStatus::ok)
-    throw std::runtime_error("bench_step: the symbolic analysis of the last matrix failed");
-  factor_and_solve();
-  int done = 0;
-  const Clock::time_point t = Clock::now();
-  for (; done < repeats || (since(t) < 0.5 && done < 200); ++done)
-    factor_and_solve();
-  return {since(t) / done, bare.factor_flops()};
 }
 
 /// One run's figures, printed as text and (with --json) as one JSON line.
@@ -115,7 +156,6 @@ struct Report {
   double setup_seconds = 0.0;  ///< mesh and model (beam), or the whole CaseAnalysis (case)
   double warmup_seconds = 0.0; ///< the steps not measured
   MeasuredSteps measured;
-  BareFloor floor;
   double output_seconds = -1.0; ///< one output step's .vtu; < 0: not measured
   double output_bytes = 0.0;
   double load_before = 0.0;
@@ -144,8 +184,8 @@ void print(const Report& r, bool json) {
   const long cuts = m.after.step_cuts - m.before.step_cuts;
   const long patterns = m.after.pattern_builds - m.before.pattern_builds;
   const long plans = m.after.plan_rebuilds - m.before.plan_rebuilds;
-  const double ratio = m.per_step / r.floor.seconds;
-  const double solver_floor = r.floor.seconds * std::max(factorizations, 1.0);
+  const double ratio = m.per_step / m.bare;
+  const double solver_floor = m.bare * std::max(factorizations, 1.0);
   std::printf("%s %s, %8d unknowns, %7d elements, %d blocks (setup %.2f s, %d+%d steps, "
               "first %.2f s; load %.2f-%.2f):\n",
               r.kind.c_str(), r.name.c_str(), r.unknowns, r.elements, r.blocks, r.setup_seconds,
@@ -159,13 +199,12 @@ void print(const Report& r, bool json) {
   std::printf("  in the measured steps: %ld cuts, %.1f factorisations per step, %ld pattern "
               "builds (each with a symbolic analysis), %ld plan rebuilds\n",
               cuts, factorizations, patterns, plans);
-  std::printf("  bare CHOLMOD factor + solve %.4f s (%.3g flops); step / bare = %.2f, step / "
-              "(bare x factorisations per step) = %.2f\n",
-              r.floor.seconds, r.floor.flops, ratio, m.per_step / solver_floor);
+  std::printf("  bare CHOLMOD factor + solve %.4f s (mean of %d after the steps, %.3g flops); step "
+              "/ bare = %.2f, step / (bare x factorisations per step) = %.2f\n",
+              m.bare, m.bare_count, m.bare_flops, ratio, m.per_step / solver_floor);
   if (r.output_seconds >= 0.0)
     std::printf("  output %.4f s (%.1f MB) per output step; (step + output) / bare = %.2f\n",
-                r.output_seconds, r.output_bytes / 1e6,
-                (m.per_step + r.output_seconds) / r.floor.seconds);
+                r.output_seconds, r.output_bytes / 1e6, (m.per_step + r.output_seconds) / m.bare);
   if (json)
     std::printf(
         "{\"kind\": \"%s\", \"name\": \"%s\", \"unknowns\": %d, \"elements\": %d, \"blocks\": %d, "
@@ -174,13 +213,14 @@ void print(const Report& r, bool json) {
         "\"plan_rebuilds\": %ld, \"seconds_step\": %.6g, \"parts\": {\"detection\": %.6g, "
         "\"constraints\": %.6g, \"pattern\": %.6g, \"assembly\": %.6g, \"contact\": %.6g, "
         "\"analysis\": %.6g, \"factorization\": %.6g, \"solve\": %.6g, \"update\": %.6g, "
-        "\"control\": %.6g}, \"bare_seconds\": %.6g, \"bare_flops\": %.6g, \"output_seconds\": "
+        "\"control\": %.6g}, \"bare_seconds\": %.6g, \"bare_count\": %d, \"bare_flops\": %.6g, "
+        "\"output_seconds\": "
         "%.6g, \"output_bytes\": %.6g, \"load_before\": %.3g, \"load_after\": %.3g}\n",
         r.kind.c_str(), r.name.c_str(), r.unknowns, r.elements, r.blocks, r.setup_seconds,
         m.before.steps, r.warmup_seconds, m.steps, cuts, factorizations, patterns, plans,
         m.per_step, detection, constraints, pattern, assembly, contact, analysis, factorization,
-        solve, update, control, r.floor.seconds, r.floor.flops, r.output_seconds, r.output_bytes,
-        r.load_before, r.load_after);
+        solve, update, control, m.bare, m.bare_count, m.bare_flops, r.output_seconds,
+        r.output_bytes, r.load_before, r.load_after);
   std::fflush(stdout);
 }
 
@@ -246,7 +286,6 @@ Report run_beam(const Options& options, double target_dofs) {
     r.output_bytes = static_cast<double>(std::filesystem::file_size(vtu));
     std::filesystem::remove(vtu);
   }
-  r.floor = measure_bare_floor(stepper.last_matrix(), r.measured.steps);
   r.unknowns = stepper.n_unknowns();
   r.elements = model.n_elements();
   r.blocks = covers.n_blocks();
@@ -272,7 +311,6 @@ Report run_case_file(const Options& options) {
     (void)stepper.step(until);
   r.warmup_seconds = since(t);
   r.measured = measure_steps(stepper, options.steps > 0 ? options.steps : 3, until);
-  r.floor = measure_bare_floor(stepper.last_matrix(), std::max(r.measured.steps, 1));
   r.unknowns = stepper.n_unknowns();
   r.elements = analysis.model().n_elements();
   r.blocks = analysis.geometry().covers.n_blocks();
