@@ -24,7 +24,7 @@ echo "== work_precision"
 python3 "$root/bench/work_precision.py" --work "$root/build/work-precision" --pictures "$out" \
   | tee "$out/work_precision.txt"
 # Per-step cost against unknowns (1e3..1e6) and blocks (1e2..1e4), each point next to the
-# bare factorisation + solve of the same matrix, with fitted exponents (issue 8; about 15
-# minutes). docs/pictures/scaling_*.png are drawn by running it without --pictures.
+# bare factorisation + solve of the same matrix, with fitted exponents (issue 8; 34 minutes
+# at load 5). docs/pictures/scaling_*.png are drawn by running it without --pictures.
 echo "== scaling"
 python3 "$root/bench/scaling.py" --work "$root/build/scaling" --pictures "$out" | tee "$out/scaling.txt"

@@ -23,9 +23,11 @@ set logscale xy
 set format x "%g"
 set format y "%g"
 set grid
+set autoscale xfix
+set offsets graph 0.03, graph 0.03, 0, 0
 set xlabel xlabel
 set ylabel "s per step (solid: step; dashed: ".floor_label."; dotted: fits)"
-set key top left font ",9"
+set key bottom right font ",9"
 plot for [i=0:nseries-1] data index i using 1:2 with linespoints lw 2 pt 7 lc i+1 \
          title columnheader(2), \
      for [i=0:nseries-1] data index i using 1:3 with linespoints lw 1 dt 2 pt 6 lc i+1 \

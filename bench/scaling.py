@@ -15,18 +15,19 @@ of the same matrix measured in the same process (issue 8, item 4).
 Unknowns: `bench_step ORDER DOFS --steps K --no-output --json` (bench/step_bench.cpp), one
 process per point: the 4 m x 1 m clamped beam under gravity, dynamic, order-0 covers at
 --dofs and order-1 covers at --order1-dofs unknowns; the first step (pattern, symbolic
-analysis) is not measured, then K steps (100 at 1e3 unknowns down to 3 from 3e5), then the
-bare CHOLMOD numeric factorisation + solve of the last step's matrix K times, the same
-analysis as the stepper's but its own: the floor of a step that factorises once.
+analysis) is not measured, then K steps (100 at 1e3 unknowns down to 3 from 3e5), each
+followed by the bare CHOLMOD numeric factorisation + solve of the matrix it ended with (a
+solver of its own, analysed untimed): the floor of a step that factorises once, measured
+under the same load as the step.
 
 Blocks: the jointed rock mass of bench/rock_mass.py (as bench/block_bench.py: seed 1, the
 default two joint sets, open_close_max = 20, dt = 1e-4 s, from rest under gravity) at about
 --blocks rock blocks, for each of --models; `bench_step --case CASE --warmup 1 --steps K
 --json`: the case read and built through the library as `nmm run` does, one step not
-measured (pattern, symbolic analysis), K measured steps (--block-steps), then the bare
-factorisation + solve of the last step's matrix K times. A block step refactorises once per
-open-close iteration with a mode change, so its solver floor is the bare time times the
-factorisations per step; the table gives both.
+measured (pattern, symbolic analysis), K measured steps (--block-steps), each followed by
+as many bare factorisations + solves of the matrix it ended with as it factorised. A block
+step refactorises once per open-close iteration with a mode change, so its solver floor is
+the bare time times the factorisations per step; the table gives both ratios.
 
 Fits: least squares of log(time) against log(unknowns) (points from --fit-dofs-from) or
 log(blocks) (from --fit-blocks-from), for the step and for its floor.
@@ -35,8 +36,10 @@ Prints Markdown tables (for docs/benchmarks.md), writes WORK/scaling_dofs.tsv an
 WORK/scaling_blocks.tsv (one block per series) with their fitted lines (WORK/*_fits.tsv)
 for bench/scaling.gp, and draws PICTURES/scaling_dofs.png and scaling_blocks.png. Every
 point records the 1-minute load average before and after it: on the shared 2-core machine
-absolute times follow the load, the step / floor ratios much less. The whole takes about
-15 minutes (--quick: 1e3..1e5 unknowns and 100..1000 blocks, about 2 minutes).
+absolute times follow the load, the step / floor ratios much less. The whole took 34
+minutes at a load of 5 on the 2 cores (the unknowns 2.6 minutes at load 2-5, the three
+10,000-block points about 20 minutes; --blocks 100,300,1000,3000 leaves those out);
+--quick: 1e3..1e5 unknowns and 100..1000 blocks, about 2 minutes.
 """
 
 import argparse
@@ -148,13 +151,13 @@ def print_blocks_table(rows, header=True):
     if header:
         print("| model | blocks | unknowns | steps (cuts) | factorisations per step | detection "
               "| assembly | contact | factorisation | solve | update | step | bare factor + "
-              "solve | **step / bare** | step / (bare x factorisations) | flops | load |")
+              "solve | step / bare | **step / (bare x factorisations)** | flops | load |")
         print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | "
               "--- | --- | --- | --- |")
     for r in rows:
         p = r["parts"]
         print("| %s | {:,} | {:,} | %d (%d) | %.1f | %s | %s | %s | %s | %s | %s | %s | %s | "
-              "**%.1f** | %.2f | %.2g | %.1f-%.1f |".format(r["x"], r["unknowns"])
+              "%.1f | **%.2f** | %.2g | %.1f-%.1f |".format(r["x"], r["unknowns"])
               % (r["series"], r["steps"], r["step_cuts"], r["factorizations_per_step"],
                  ms(p["detection"]),
                  ms(p["constraints"] + p["pattern"] + p["assembly"]), ms(p["contact"]),
@@ -288,8 +291,8 @@ def main(argv=None):
         cpu_model(), os.cpu_count(), version[0] if version else "nmm",
         blas[0] if blas else "?", time.strftime("%Y-%m-%d %H:%M"), load_average()))
     print("  times in ms per step, means over the measured steps; bare: CHOLMOD numeric "
-          "factorisation + solve of the last step's matrix in the same process; load: 1-minute "
-          "load average before-after the point")
+          "factorisation + solve of the matrix each step ended with, right after it; load: "
+          "1-minute load average before-after the point")
     start = time.monotonic()
     dofs_rows, block_rows = [], []
     if not args.no_dofs:
