@@ -24,6 +24,11 @@ echo "== work_precision"
 python3 "$root/bench/work_precision.py" --work "$root/build/work-precision" --pictures "$out" \
   | tee "$out/work_precision.txt"
 # Numerical stress tests too long for the test suite, each with its pass criterion (issue 8;
-# docs/benchmarks.md "Numerical stress tests"). Exit code 1 when one fails, as two do today.
+# docs/benchmarks.md "Numerical stress tests"). Exit code 1 when one fails, as three do today.
 echo "== stress"
 python3 "$root/bench/stress.py" --work "$root/build/stress" | tee "$out/stress.txt" || true
+# Per-step cost against unknowns (1e3..1e6) and blocks (1e2..1e4), each point next to the
+# bare factorisation + solve of the same matrix, with fitted exponents (issue 8; 34 minutes
+# at load 5). docs/pictures/scaling_*.png are drawn by running it without --pictures.
+echo "== scaling"
+python3 "$root/bench/scaling.py" --work "$root/build/scaling" --pictures "$out" | tee "$out/scaling.txt"

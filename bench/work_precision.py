@@ -58,11 +58,11 @@ import csv
 import json
 import math
 import os
-import shutil
 import subprocess
 import sys
 import time
 
+from figures import fit_slope, gnuplot
 from machine import cpu_model, load_average
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -563,16 +563,6 @@ def incline_study(args):
 # Rates, tables, plots
 
 
-def fit_slope(xs, ys):
-    """Least-squares slope of log(y) against log(x)."""
-    lx = [math.log(x) for x in xs]
-    ly = [math.log(y) for y in ys]
-    n = len(lx)
-    mx, my = sum(lx) / n, sum(ly) / n
-    sxx = sum((x - mx) ** 2 for x in lx)
-    return sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
-
-
 def rates(study, column):
     """Per series: (slope against h over all, of the last pair, slope against time)."""
     out = {}
@@ -638,24 +628,13 @@ def plot(args, study, tables, png):
     """tables: [(tsv, blocks, what)], one row of two panels each."""
     if args.no_plot:
         return
-    if not shutil.which("gnuplot"):
-        print("work_precision: no gnuplot (apt-get install -y --no-install-recommends "
-              "gnuplot-nox); %s not drawn" % png)
-        return
-    os.makedirs(os.path.dirname(os.path.abspath(png)), exist_ok=True)
     variables = ["png='%s'" % png, "plot_title='%s'" % study.title,
                  "hlabel='%s'" % study.h_label]
     for i, (tsv, blocks, what) in enumerate(tables):
         suffix = "" if i == 0 else str(i + 1)
         variables += ["tsv%s='%s'" % (suffix, tsv), "blocks%s=%d" % (suffix, blocks),
                       "elabel%s='relative error: %s'" % (suffix, what)]
-    done = subprocess.run(["gnuplot", "-e", "; ".join(variables),
-                           os.path.join(ROOT, "bench", "work_precision.gp")],
-                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    if done.returncode != 0:
-        print("work_precision: gnuplot failed on %s:\n%s" % (png, done.stdout))
-    else:
-        print("wrote %s" % png)
+    gnuplot(os.path.join(ROOT, "bench", "work_precision.gp"), variables, png, "work_precision")
 
 
 def main(argv=None):
