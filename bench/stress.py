@@ -69,9 +69,7 @@ import json
 import math
 import os
 import random
-import re
 import shutil
-import struct
 import subprocess
 import sys
 import time
@@ -79,6 +77,8 @@ import time
 from machine import cpu_model, load_average
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "scripts"))
+from vtk_xml import read_arrays  # noqa: E402  (scripts/vtk_xml.py: nmm's VTK files, LZ4)
 
 
 def run_nmm(nmm, case, out):
@@ -433,85 +433,10 @@ every = {every}   # step files for the work of gravity (bench/stress.py)
 """
 
 
-def lz4_block(data, size):
-    """Decompresses one LZ4 block (the raw block format VTK's LZ4 compressor writes)."""
-    out = bytearray()
-    i = 0
-    while i < len(data):
-        token = data[i]
-        i += 1
-        literals = token >> 4
-        if literals == 15:
-            while True:
-                extra = data[i]
-                i += 1
-                literals += extra
-                if extra != 255:
-                    break
-        out += data[i:i + literals]
-        i += literals
-        if i >= len(data):
-            break
-        offset = data[i] | (data[i + 1] << 8)
-        i += 2
-        length = token & 15
-        if length == 15:
-            while True:
-                extra = data[i]
-                i += 1
-                length += extra
-                if extra != 255:
-                    break
-        length += 4
-        start = len(out) - offset
-        if offset >= length:
-            out += out[start:start + length]
-        else:
-            for k in range(length):
-                out.append(out[start + k])
-    if len(out) != size:
-        raise ValueError("LZ4 block of %d bytes, expected %d" % (len(out), size))
-    return bytes(out)
-
-
-def read_vtu_arrays(path, names):
-    """The appended, LZ4-compressed, UInt64-headed arrays @p names of a .vtu nmm wrote
-    (docs/output.md), each a list of numbers (components flattened). Names must be unique
-    in the file, as they are in a .vtu (a .vtp has a connectivity array per cell kind)."""
-    with open(path, "rb") as f:
-        raw = f.read()
-    start = raw.index(b"<AppendedData")
-    start = raw.index(b"_", start) + 1
-    header = raw[:start].decode("latin-1")
-    kinds = {"Float64": "d", "Int64": "q", "Int32": "i", "UInt8": "B", "UInt64": "Q"}
-    arrays = {}
-    for tag in re.finditer(r"<DataArray([^>]*)>", header):
-        attributes = dict(re.findall(r'(\w+)="([^"]*)"', tag.group(1)))
-        name = attributes.get("Name")
-        if name not in names:
-            continue
-        at = start + int(attributes["offset"])
-        blocks, block_size, last_size = struct.unpack_from("<QQQ", raw, at)
-        sizes = struct.unpack_from("<%dQ" % blocks, raw, at + 24)
-        at += 24 + 8 * blocks
-        data = bytearray()
-        for k, compressed in enumerate(sizes):
-            full = last_size if (k == blocks - 1 and last_size) else block_size
-            data += lz4_block(raw[at:at + compressed], full)
-            at += compressed
-        code = kinds[attributes["type"]]
-        arrays[name] = list(struct.unpack("<%d%s" % (len(data) // struct.calcsize(code), code),
-                                          bytes(data)))
-    missing = set(names) - set(arrays)
-    if missing:
-        raise ValueError("%s has no array %s" % (path, ", ".join(sorted(missing))))
-    return arrays
-
-
 def block_polygons(path):
     """(material, block) -> the block's polygon at its current position, for every block of a
     step file (a DDA block is one cell; material 0 is the first [materials] table)."""
-    mesh = read_vtu_arrays(path, {"Points", "connectivity", "offsets", "material", "block"})
+    mesh = read_arrays(path, {"Points", "connectivity", "offsets", "material", "block"})
     polygons = {}
     begin = 0
     for cell, stop in enumerate(mesh["offsets"]):

@@ -5,7 +5,7 @@ Reads the last contacts_NNNNNN.vtp of a run (the `pressure` and `length` arrays 
 docs/output.md), the case file (the two materials and the load) and the .geo (R), and prints
 the closed form, the peak pressure of the run and its error, the contact half-width and the
 sum of the contact forces against the load. Python 3.11 standard library only: the VTK files
-are LZ4-compressed, and the LZ4 block format is decoded here.
+are read by scripts/vtk_xml.py.
 
     python3 examples/17_hertz_contact/hertz_pressure.py [OUT_DIR] [--case CASE] [--profile FILE]
 
@@ -19,85 +19,12 @@ import json
 import math
 import os
 import re
-import struct
 import sys
 import tomllib
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-
-
-def lz4_block(source, size):
-    """Decodes one LZ4 block (the format of the lz4 library's LZ4_compress_default)."""
-    out = bytearray()
-    i = 0
-
-    def length(nibble):
-        """A length from its token nibble: 15 goes on in bytes until one below 255."""
-        nonlocal i
-        if nibble == 15:
-            while True:
-                extra = source[i]
-                i += 1
-                nibble += extra
-                if extra != 255:
-                    break
-        return nibble
-
-    while i < len(source):
-        token = source[i]
-        i += 1
-        literals = length(token >> 4)
-        out += source[i:i + literals]
-        i += literals
-        if i >= len(source):  # the last sequence has literals only
-            break
-        offset = source[i] | (source[i + 1] << 8)
-        i += 2
-        match = length(token & 15) + 4
-        start = len(out) - offset
-        for k in range(match):  # byte by byte: a match may overlap what it copies
-            out.append(out[start + k])
-    if len(out) != size:
-        raise ValueError("LZ4 block decoded to %d bytes, expected %d" % (len(out), size))
-    return bytes(out)
-
-
-def read_vtk(path):
-    """The data arrays of a VTK XML file written by nmm (appended raw, LZ4), by name."""
-    with open(path, "rb") as f:
-        data = f.read()
-    head, _, raw = data.partition(b'<AppendedData encoding="raw">')
-    raw = raw[raw.index(b"_") + 1:]
-    text = head.decode()
-    header = "Q" if 'header_type="UInt64"' in text else "I"
-    width = struct.calcsize(header)
-    types = {"Float64": "d", "Float32": "f", "Int32": "i", "Int64": "q", "UInt8": "B",
-             "Int8": "b", "UInt32": "I", "UInt64": "Q"}
-    arrays = {}
-    for element in re.finditer(r"<(Points|PointData|CellData|Verts|FieldData)>|<DataArray ([^>]*)>",
-                               text):
-        if element.group(1):
-            section = element.group(1)
-            continue
-        attributes = dict(re.findall(r'(\w+)="([^"]*)"', element.group(2)))
-        offset = int(attributes["offset"])
-        blocks, block_size, last_size = struct.unpack_from("<3" + header, raw, offset)
-        sizes = struct.unpack_from("<%d%s" % (blocks, header), raw, offset + 3 * width)
-        position = offset + (3 + blocks) * width
-        chunks = []
-        for k, compressed in enumerate(sizes):
-            size = last_size if k == blocks - 1 and last_size else block_size
-            chunks.append(lz4_block(raw[position:position + compressed], size))
-            position += compressed
-        blob = b"".join(chunks)
-        code = types[attributes["type"]]
-        values = struct.unpack("<%d%s" % (len(blob) // struct.calcsize(code), code), blob)
-        components = int(attributes.get("NumberOfComponents", "1"))
-        if components > 1:
-            values = [values[i:i + components] for i in range(0, len(values), components)]
-        name = "Points" if section == "Points" else attributes.get("Name")
-        arrays.setdefault(name, values)
-    return arrays
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+from vtk_xml import read_arrays  # noqa: E402  (scripts/vtk_xml.py: nmm's VTK files, LZ4)
 
 
 def hertz(case_file):
@@ -124,11 +51,11 @@ def measure(out_dir, closed_form):
     files = sorted(glob.glob(os.path.join(out_dir, "contacts_*.vtp")))
     if not files:
         sys.exit("no contacts_*.vtp in %s: run the case first" % out_dir)
-    contacts = read_vtk(files[-1])
+    contacts = read_arrays(files[-1], {"Points", "state", "pressure", "length"})
     closed = [k for k, state in enumerate(contacts["state"]) if state != 0]
     if not closed:
         sys.exit("%s: no closed contact" % files[-1])
-    x = [contacts["Points"][k][0] for k in closed]
+    x = [contacts["Points"][3 * k] for k in closed]
     pressure = [contacts["pressure"][k] for k in closed]
     length = [contacts["length"][k] for k in closed]
     summary_file = os.path.join(out_dir, "summary.json")

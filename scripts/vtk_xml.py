@@ -1,0 +1,96 @@
+# SPDX-License-Identifier: MIT
+"""The data arrays of the VTK XML files nmm writes (.vtu, .vtp; docs/output.md), read with
+the Python standard library, for scripts on machines without VTK's Python module
+(examples/17_hertz_contact/hertz_pressure.py, bench/stress.py).
+
+nmm writes appended raw data compressed by VTK's LZ4 compressor: per array a header of
+UInt32 or UInt64 words (number of blocks, block size, size of the last block, then the
+compressed size of each block) and the LZ4 blocks, decoded here.
+"""
+
+import re
+import struct
+
+_TYPES = {"Float64": "d", "Float32": "f", "Int64": "q", "Int32": "i", "Int8": "b",
+          "UInt64": "Q", "UInt32": "I", "UInt8": "B"}
+_SECTION = r"<(Points|PointData|CellData|Cells|Verts|Lines|Polys|Strips|FieldData)>"
+
+
+def lz4_block(source, size):
+    """Decodes one LZ4 block (the format of the lz4 library's LZ4_compress_default)."""
+    out = bytearray()
+    i = 0
+
+    def length(nibble):
+        """A length from its token nibble: 15 goes on in bytes until one below 255."""
+        nonlocal i
+        if nibble == 15:
+            while True:
+                extra = source[i]
+                i += 1
+                nibble += extra
+                if extra != 255:
+                    break
+        return nibble
+
+    while i < len(source):
+        token = source[i]
+        i += 1
+        literals = length(token >> 4)
+        out += source[i:i + literals]
+        i += literals
+        if i >= len(source):  # the last sequence has literals only
+            break
+        offset = source[i] | (source[i + 1] << 8)
+        i += 2
+        match = length(token & 15) + 4
+        start = len(out) - offset
+        if offset >= match:
+            out += out[start:start + match]
+        else:
+            for k in range(match):  # byte by byte: the match overlaps what it copies
+                out.append(out[start + k])
+    if len(out) != size:
+        raise ValueError("LZ4 block decoded to %d bytes, expected %d" % (len(out), size))
+    return bytes(out)
+
+
+def read_arrays(path, names=None):
+    """The data arrays of @p path by name, each a flat list of numbers (the components of a
+    tuple one after the other); the point coordinates as "Points". Only @p names when given
+    (a ValueError names the ones missing). A name the file repeats (a .vtp's connectivity of
+    each cell kind) keeps its first array."""
+    with open(path, "rb") as f:
+        data = f.read()
+    head, _, raw = data.partition(b'<AppendedData encoding="raw">')
+    raw = raw[raw.index(b"_") + 1:]
+    text = head.decode("latin-1")
+    header = "Q" if 'header_type="UInt64"' in text else "I"
+    width = struct.calcsize(header)
+    arrays = {}
+    section = None
+    for element in re.finditer(_SECTION + r"|<DataArray ([^>]*)>", text):
+        if element.group(1):
+            section = element.group(1)
+            continue
+        attributes = dict(re.findall(r'(\w+)="([^"]*)"', element.group(2)))
+        name = "Points" if section == "Points" else attributes.get("Name")
+        if name in arrays or (names is not None and name not in names):
+            continue
+        offset = int(attributes["offset"])
+        blocks, block_size, last_size = struct.unpack_from("<3" + header, raw, offset)
+        sizes = struct.unpack_from("<%d%s" % (blocks, header), raw, offset + 3 * width)
+        position = offset + (3 + blocks) * width
+        chunks = []
+        for k, compressed in enumerate(sizes):
+            size = last_size if k == blocks - 1 and last_size else block_size
+            chunks.append(lz4_block(raw[position:position + compressed], size))
+            position += compressed
+        blob = b"".join(chunks)
+        code = _TYPES[attributes["type"]]
+        arrays[name] = list(struct.unpack("<%d%s" % (len(blob) // struct.calcsize(code), code),
+                                          blob))
+    missing = set(names or ()) - set(arrays)
+    if missing:
+        raise ValueError("%s has no array %s" % (path, ", ".join(sorted(missing))))
+    return arrays
