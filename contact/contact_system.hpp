@@ -108,6 +108,9 @@ struct ContactPoint {
 /// What one open-close iteration found.
 struct ModeUpdate {
   int changes = 0; ///< contacts whose mode or lift-off point changed (the matrix changes)
+  /// Of the changes, closed edge-to-edge contacts whose springs only moved along their
+  /// overlap (the lift-off point converging), not opening, closing, sticking or slipping.
+  int moves = 0;
   /// Work of the change of the friction forces since they were applied, over the work of
   /// all friction in the step (0 when nothing slides).
   double friction_residual = 0.0;

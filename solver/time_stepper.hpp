@@ -37,7 +37,9 @@ struct StepperOptions {
   /// to a third when the open-close iteration does not converge) before the run stops.
   int max_step_cuts = 10;
   /// Open-close iterations with mode changes (each a refactorisation) per step before the
-  /// step is cut (Shi 8.2).
+  /// step is cut (Shi 8.2). In a dynamic step, iterations that only move edge-to-edge
+  /// springs along their overlaps do not count; no step has more than ten times this many
+  /// refactorisations.
   int open_close_max = 6;
   /// Solves with the same factor for friction alone (no mode changed, the friction loads
   /// still moving) per step before the step is cut.
