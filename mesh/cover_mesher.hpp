@@ -27,6 +27,15 @@ struct CoverMesherOptions {
   std::vector<int> block_regions;
 };
 
+/// Moves the nodes of @p math that lie inside the material within rounding of a boundary
+/// between material and void (1e-12 of the edge's size) onto it or just outside, by a few
+/// units in the last place. Why: a mesh generator places boundary nodes of a slanted edge by
+/// rounding, and a node a hair inside leaves a sliver of material that no triangle covers:
+/// the boundary there would have no elements, and a load or contact on it would act on
+/// nothing. Edges walked both ways by region loops (interfaces) are left alone.
+/// @return the number of nodes moved.
+int fit_math_mesh_to_boundary(MathMesh& math, const PhysicalMesh& physical);
+
 /// Builds atoms, physical covers, manifold elements, blocks and boundary loops
 /// (DESIGN.md, "Concepts"; the rules for degenerate input are in docs/cover-mesher.md).
 ///
@@ -46,15 +55,6 @@ struct CoverMesherOptions {
 ///       element areas sum to the material area (up to rounding of the vertices).
 /// @throws InputError naming physical.source and the regions when material regions
 ///         overlap, or when the math mesh does not cover the material.
-/// Moves the nodes of @p math that lie inside the material within rounding of a boundary
-/// between material and void (1e-12 of the edge's size) onto it or just outside, by a few
-/// units in the last place. Why: a mesh generator places boundary nodes of a slanted edge by
-/// rounding, and a node a hair inside leaves a sliver of material that no triangle covers:
-/// the boundary there would have no elements, and a load or contact on it would act on
-/// nothing. Edges walked both ways by region loops (interfaces) are left alone.
-/// @return the number of nodes moved.
-int fit_math_mesh_to_boundary(MathMesh& math, const PhysicalMesh& physical);
-
 [[nodiscard]] CoverSystem build_cover_system(const MathMesh& math,
                                              const PhysicalMesh& physical,
                                              std::span<const int> joints,

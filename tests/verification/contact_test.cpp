@@ -528,19 +528,12 @@ struct RotatingTriangle {
     scene.point_loads.push_back({{s.model.find_element(apex, 1e-9), apex}, {1e4, 0.0}, {}});
     StepperOptions options;
     options.time_step = 1e-2;
-    ContactOptions contact;
-    contact.penalty = 100.0 * rock.young; // the paper's normal spring
-    contact.spring_length = s.model.scale;
-    std::vector<std::vector<JointStrength>> strengths;
-    std::vector<std::vector<bool>> bonds;
-    for (const BoundaryLoop& loop : s.model.loops) {
-      strengths.emplace_back(loop.edges.size(), JointStrength{30.0 * pi / 180.0, 0.0, 0.0});
-      bonds.emplace_back(loop.edges.size(), false);
-    }
     const int foundation =
         s.model.elements[static_cast<std::size_t>(s.model.find_element({-0.5, 0.5}, 1e-9))].block;
-    TimeStepper stepper(s.model, scene, options,
-                        std::make_unique<ContactSystem>(contact, strengths, bonds));
+    // The paper's normal spring, 100 E.
+    TimeStepper stepper(
+        s.model, scene, options,
+        contact_for(s.model, 100.0 * rock.young, JointStrength{30.0 * pi / 180.0, 0.0, 0.0}));
     for (int step = 0; step < 19; ++step) {
       stepper.step(1e9);
       // The moved boundary, numbered as the contact system numbers it (loop after loop).
