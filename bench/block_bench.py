@@ -30,7 +30,6 @@ and after each run, and the CPU model. Times are wall-clock as nmm measures them
 """
 
 import argparse
-import json
 import os
 import shutil
 import subprocess
@@ -38,6 +37,7 @@ import sys
 import time
 
 from machine import cpu_model, load_average
+from nmm_run import run_nmm
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 WALL_GOAL_SECONDS = 0.2  # issue 6: the 70-block wall's 583 steps
@@ -52,30 +52,12 @@ def parse_steps(text):
     return steps
 
 
-def run_nmm(nmm, case, out, threads):
-    command = [nmm]
-    if threads:
-        command += ["--threads", str(threads)]
-    command += ["run", case, "-o", out, "--quiet"]
+def run_nmm_counted(nmm, case, out, threads):
+    """run_nmm() with the closed contacts of the last step and the load before and after."""
     before = load_average()
-    start = time.monotonic()
-    done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    elapsed = time.monotonic() - start
-    after = load_average()
-    summary_file = os.path.join(out, "summary.json")
-    if not os.path.exists(summary_file):
-        sys.exit("block_bench: %s wrote no summary.json:\n%s" % (" ".join(command), done.stdout))
-    with open(summary_file) as f:
-        summary = json.load(f)
-    contacts = 0
-    history = os.path.join(out, "history.csv")
-    if os.path.exists(history):
-        with open(history) as f:
-            lines = f.read().splitlines()
-        if len(lines) > 1:
-            header = lines[0].split(",")
-            contacts = int(float(lines[-1].split(",")[header.index("contacts")]))
-    return summary, contacts, elapsed, (before, after)
+    summary, rows, elapsed = run_nmm(nmm, case, out, "block_bench", threads)
+    contacts = int(rows[-1]["contacts"]) if rows else 0
+    return summary, contacts, elapsed, (before, load_average())
 
 
 def figures(label, kind, blocks, summary, contacts, elapsed, load):
@@ -225,7 +207,7 @@ def main(argv=None):
                 if made.returncode != 0:
                     sys.exit("block_bench: %s failed:\n%s" % (" ".join(generate), made.stdout))
                 planned = int(made.stdout.split("planned ")[1].split()[0])
-                summary, contacts, elapsed, load = run_nmm(
+                summary, contacts, elapsed, load = run_nmm_counted(
                     args.nmm, os.path.join(folder, "case.toml"), os.path.join(folder, "out"),
                     args.threads)
                 rows.append(figures("rock mass", model, planned, summary, contacts, elapsed,
@@ -234,8 +216,8 @@ def main(argv=None):
     if not args.no_wall:
         for model in ("dda", "vem"):
             case, folder = wall_case(args.work, model)
-            summary, contacts, elapsed, load = run_nmm(args.nmm, case, os.path.join(folder, "out"),
-                                                       args.threads)
+            summary, contacts, elapsed, load = run_nmm_counted(
+                args.nmm, case, os.path.join(folder, "out"), args.threads)
             rows.append(figures("wall 70", model, 70, summary, contacts, elapsed, load))
             print_table(rows[-1:])
     print()

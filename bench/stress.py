@@ -64,39 +64,18 @@ and after. Exit code 1 if any test failed.
 """
 
 import argparse
-import csv
-import json
 import math
 import os
 import random
 import shutil
-import subprocess
 import sys
-import time
 
 from machine import cpu_model, load_average
+from nmm_run import run_nmm
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from vtk_xml import read_arrays  # noqa: E402  (scripts/vtk_xml.py: nmm's VTK files, LZ4)
-
-
-def run_nmm(nmm, case, out):
-    """Runs nmm on @p case into @p out; returns (summary, rows of history.csv, seconds)."""
-    if os.path.isdir(out):
-        shutil.rmtree(out)
-    start = time.monotonic()
-    done = subprocess.run([nmm, "run", case, "-o", out, "--quiet"], stdout=subprocess.PIPE,
-                          stderr=subprocess.STDOUT, text=True)
-    elapsed = time.monotonic() - start
-    summary_file = os.path.join(out, "summary.json")
-    if not os.path.exists(summary_file):
-        sys.exit("stress: %s wrote no summary.json:\n%s" % (case, done.stdout))
-    with open(summary_file) as f:
-        summary = json.load(f)
-    with open(os.path.join(out, "history.csv")) as f:
-        rows = [{k: float(v) for k, v in row.items()} for row in csv.DictReader(f)]
-    return summary, rows, elapsed
 
 
 def all_finite(rows):
@@ -152,7 +131,7 @@ def spin(args, model):
     write(os.path.join(folder, "case.toml"), SPIN_CASE.replace("{model}", model)
           .replace("{steps}", str(1000 * revolutions)))
     summary, rows, seconds = run_nmm(args.nmm, os.path.join(folder, "case.toml"),
-                                     os.path.join(folder, "out"))
+                                     os.path.join(folder, "out"), "stress")
 
     def radius(row):
         return math.hypot(row["corner.x"] - row["centre.x"], row["corner.y"] - row["centre.y"])
@@ -228,7 +207,7 @@ def drop(args):
     write(os.path.join(folder, "drop.geo"), DROP_GEO)
     write(os.path.join(folder, "case.toml"), DROP_CASE.replace("{steps}", str(steps)))
     summary, rows, seconds = run_nmm(args.nmm, os.path.join(folder, "case.toml"),
-                                     os.path.join(folder, "out"))
+                                     os.path.join(folder, "out"), "stress")
     finite = all_finite(rows)
     work = max(abs(row["load_work"]) for row in rows)
     gain = max(row["kinetic_energy"] - row["load_work"] for row in rows) / work
@@ -463,7 +442,7 @@ def pile(args):
         top_x=top[0], top_y=top[1], bottom_x=low[0], bottom_y=low[1],
         wall_x=-0.5 * PILE_WALL, wall_y=height - 0.5 * PILE_WALL, every=PILE_EVERY))
     summary, rows, seconds = run_nmm(args.nmm, os.path.join(folder, "case.toml"),
-                                     os.path.join(folder, "out"))
+                                     os.path.join(folder, "out"), "stress")
     criterion = ("%d convex DDA blocks dropped %g m apart into a held box, %d steps of %g s: "
                  "completes, no NaN, kinetic energy at the end < 1e-3 of its peak, never above "
                  "the work of gravity (every %d steps) nor load_work, penetration < 1e-3 of "
@@ -555,7 +534,7 @@ def penalty_sweep(args):
         text = text.replace("every = 50", "every = 100000000")
         write(os.path.join(folder, "case.toml"), text)
         summary, rows, elapsed = run_nmm(args.nmm, os.path.join(folder, "case.toml"),
-                                         os.path.join(folder, "out"))
+                                         os.path.join(folder, "out"), "stress")
         seconds += elapsed
         last = rows[-1]
         slid = -(last["block.ux"] + last["block.uy"]) / math.sqrt(2.0)
