@@ -308,7 +308,13 @@ vtkSmartPointer<vtkAbstractArray> to_vtk(const DataArray& array) {
         result->SetName(array.name.c_str());
         result->SetNumberOfComponents(array.n_components);
         result->SetNumberOfTuples(static_cast<vtkIdType>(array.n_tuples()));
-        std::copy(values.begin(), values.end(), result->GetPointer(0));
+        // -0.0 is written as 0.0. VTK puts each array's range into the file's header and
+        // computes it with threads: of an array holding both zeros, which one is the minimum
+        // depends on the threads' order, so the same data gave "-0" in one file and "0" in
+        // the next (a restarted run's contact forces differed from the straight run's in
+        // that header alone, once under load). x + 0.0 is x for every other value.
+        std::transform(values.begin(), values.end(), result->GetPointer(0),
+                       [](Value v) { return v + Value{0}; });
         return result;
       },
       array.values);
