@@ -3,6 +3,7 @@
 #include "solver/threads.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <string>
@@ -154,6 +155,29 @@ TEST(Threads, SingleBlasThreadRunsOneThreadAndRestoresTheCount) {
   }
   EXPECT_EQ(blas_threads(), 2);
   limit_threads(available_cores());
+}
+
+TEST(Threads, OpenMpRegionsOfEveryLibraryRunNmmsOneThreadEntry) {
+  // CHOLMOD (a shared library) finds GOMP_parallel where the dynamic linker looks first: the
+  // executable's own definition (threads.hpp), not libgomp's team with a system call at its
+  // end. Not exported from the executable, this lookup would give libgomp's.
+  void* const found = dlsym(RTLD_DEFAULT, "GOMP_parallel");
+  ASSERT_NE(found, nullptr);
+  EXPECT_EQ(found, reinterpret_cast<void*>(&GOMP_parallel));
+  // And it runs the body once, with its data.
+  int runs = 0;
+  GOMP_parallel([](void* data) { ++*static_cast<int*>(data); }, &runs, 4, 0);
+  EXPECT_EQ(runs, 1);
+  // A supernodal factorization through it gives the answer.
+  const SparseMatrix a = laplacian(30, 0.0);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
+  CholmodSolver solver;
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd x;
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  // Residual to rounding: condition ~400, 900 unknowns.
+  EXPECT_LT((a * x - rhs).norm(), 1e-12 * rhs.norm());
 }
 
 TEST(Threads, CapsAtUsableCoresAndLinksOpenBlas) {
