@@ -183,6 +183,18 @@ void Assembler::add_vector(int plan_id, const Eigen::Ref<const Eigen::VectorXd>&
     rhs_[kept_dof[q]] += local[kept[q]];
 }
 
+void Assembler::truncate_plans(int first) {
+  NMM_ASSERT(first >= 0 && first <= n_plans(), "no such plan");
+  if (first == n_plans())
+    return;
+  const Plan& plan = plans_[static_cast<std::size_t>(first)];
+  kept_local_.resize(plan.kept_begin);
+  kept_dofs_.resize(plan.kept_begin);
+  positions_.resize(plan.position_begin);
+  repeats_.resize(plan.repeat_begin);
+  plans_.resize(static_cast<std::size_t>(first));
+}
+
 void Assembler::clear_plans() {
   plans_.clear();
   kept_local_.clear();

@@ -80,6 +80,9 @@ public:
   [[nodiscard]] int n_plans() const { return static_cast<int>(plans_.size()); }
   /// Drops every plan (keeps their storage).
   void clear_plans();
+  /// Drops the plans from @p first on and keeps the earlier ones: the next plan() returns
+  /// @p first. @pre 0 <= first <= n_plans() (NMM_ASSERT).
+  void truncate_plans(int first);
 
   /// The assembled matrix: upper triangle, compressed, in the pattern's order.
   [[nodiscard]] const SparseMatrix& matrix() const { return matrix_; }

@@ -419,8 +419,17 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     bool rebuilt = false;
     const bool same_size = impl_->stiffness && impl_->pattern.n_dofs() == map.n_reduced();
     const bool same = same_size && impl_->coupling_start == starts && impl_->coupling_dofs == flat;
+    // The elements and supports come first and rarely change: when only the contacts did,
+    // their plans stay and only the contacts' are made again.
+    const auto fixed = static_cast<std::size_t>(first_contact_plan);
+    const bool fixed_same =
+        same_size && impl_->coupling_start.size() > fixed &&
+        std::equal(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(fixed) + 1,
+                   impl_->coupling_start.begin()) &&
+        std::equal(flat.begin(), flat.begin() + starts[fixed], impl_->coupling_dofs.begin());
+    const std::size_t first_new = fixed_same ? fixed : 0;
     auto fits = [&] {
-      for (std::size_t k = 0; k + 1 < starts.size(); ++k) {
+      for (std::size_t k = first_new; k + 1 < starts.size(); ++k) {
         const std::span<const int> dofs = coupling(k);
         for (std::size_t i = 0; i < dofs.size(); ++i) {
           for (std::size_t j = i; j < dofs.size() && dofs[i] >= 0; ++j) {
@@ -433,8 +442,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       return true;
     };
     if (!same && same_size && fits()) {
-      impl_->stiffness->clear_plans();
-      for (std::size_t k = 0; k + 1 < starts.size(); ++k)
+      impl_->stiffness->truncate_plans(static_cast<int>(first_new));
+      for (std::size_t k = first_new; k + 1 < starts.size(); ++k)
         (void)impl_->stiffness->plan(coupling(k));
       impl_->coupling_start = starts;
       impl_->coupling_dofs = flat;
