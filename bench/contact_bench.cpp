@@ -52,6 +52,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <numbers>
 #include <set>
 #include <string>
 #include <vector>
@@ -63,7 +64,7 @@ using nmm::bench::Clock;
 using nmm::bench::load_average;
 using nmm::bench::since;
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 constexpr double brick_length = 1.0;
 constexpr double brick_height = 0.5;
 constexpr double cover_size = 0.25;

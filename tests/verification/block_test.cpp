@@ -11,13 +11,14 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace nmm {
 namespace {
 
 using testing::elastic;
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 /// Holds the rigid motion of a body with corners at (0, 0) and (2, 0): the first in x and y,
 /// the second in y.

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <set>
 
 namespace nmm {
@@ -19,7 +20,7 @@ using testing::contact_for;
 using testing::elastic;
 using testing::line;
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 TEST(Goodman, EdgeToEdgeContactIsTheGoodmanJointElement) {
   // Two unit squares joined by an intact (locked) joint along y = 1, on a conforming math

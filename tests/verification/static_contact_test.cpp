@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace nmm {
 namespace {
@@ -17,7 +18,7 @@ using testing::contact_for;
 using testing::elastic;
 using testing::line;
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 /// A block of rock 20 m x 10 m on a held base, plane strain, E = 10 GPa, under gravity. A
 /// joint dipping 20 degrees leaves the top surface at (4, 10) (a 20 degree wedge tip) and the

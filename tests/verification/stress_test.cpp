@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <random>
 
 namespace nmm {
@@ -26,7 +27,7 @@ using testing::line;
 using testing::make_setup;
 using testing::rectangle;
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 /// Estimate of the 2-norm condition number of the symmetric positive definite matrix whose
 /// upper triangle is @p upper: lambda_max by power iteration, lambda_min by inverse

@@ -4,13 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <set>
 #include <vector>
 
 namespace nmm {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 /// Builds a boundary from loops given counter-clockwise (material on the left).
 ContactBoundary boundary_of(const std::vector<std::vector<Point2>>& loops) {
