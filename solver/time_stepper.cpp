@@ -423,7 +423,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     // their plans stay and only the contacts' are made again.
     const auto fixed = static_cast<std::size_t>(first_contact_plan);
     const bool fixed_same =
-        same_size && impl_->coupling_start.size() > fixed &&
+        !same && same_size && impl_->coupling_start.size() > fixed &&
         std::equal(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(fixed) + 1,
                    impl_->coupling_start.begin()) &&
         std::equal(flat.begin(), flat.begin() + starts[fixed], impl_->coupling_dofs.begin());
