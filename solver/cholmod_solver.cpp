@@ -128,6 +128,14 @@ SolveStatus CholmodSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& so
   b.x = const_cast<double*>(rhs.data()); // NOLINT(cppcoreguidelines-pro-type-const-cast)
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
+  // The triangular solves of a factor that was made on one thread run on one thread too:
+  // OpenBLAS parallelises their larger dgemv calls, and the second thread it wakes for them
+  // then spins in sched_yield between the solve's calls (3.3 s of system time in a 3.6 s run
+  // of a 1,003-block rock mass, at the same speed), and the result depends on the thread
+  // count.
+  std::optional<SingleBlasThread> single;
+  if (impl_->flops < impl_->single_thread_flops)
+    single.emplace();
   const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &b, nullptr, &impl_->solution, nullptr,
                                 &impl_->work_y, &impl_->work_e, &impl_->common);
   if (ok == 0 || impl_->solution == nullptr)

@@ -24,7 +24,8 @@ public:
   [[nodiscard]] const SolverCounters& counters() const override;
   [[nodiscard]] std::string name() const override;
 
-  /// Factorizations below this many floating-point operations run BLAS on one thread: on
+  /// Factorizations below this many floating-point operations, and the solves with their
+  /// factors, run BLAS on one thread: on
   /// the 2-core machine kind one thread was as fast or faster up to 1.8e9 flops (about 1e5
   /// unknowns of order 0) and two threads 10 % faster at 5e9 (docs/benchmarks.md "CHOLMOD
   /// threads"); 0 uses every thread limit_threads() allows for every size.
