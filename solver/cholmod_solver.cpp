@@ -36,6 +36,13 @@ struct CholmodSolver::Impl {
   double single_thread_flops = default_single_thread_flops;
   SolverCounters counters;
 
+  /// BLAS on one thread while it lives when the factor is small (set_single_thread_flops()):
+  /// for its factorization and for the solves with it alike.
+  [[nodiscard]] std::optional<SingleBlasThread> single_thread_if_small() const {
+    return flops < single_thread_flops ? std::optional<SingleBlasThread>(std::in_place)
+                                       : std::optional<SingleBlasThread>();
+  }
+
   Impl() {
     cholmod_start(&common);
     common.supernodal = CHOLMOD_SUPERNODAL;
@@ -95,9 +102,7 @@ SolveStatus CholmodSolver::factorize(const SparseMatrix& matrix) {
   if (impl_->factor == nullptr || matrix.rows() != impl_->n)
     return SolveStatus::failed;
   cholmod_sparse a = Impl::view(matrix);
-  std::optional<SingleBlasThread> single;
-  if (impl_->flops < impl_->single_thread_flops)
-    single.emplace();
+  const auto single = impl_->single_thread_if_small();
   const int ok = cholmod_factorize(&a, impl_->factor, &impl_->common);
   impl_->failed_column = -1;
   if (impl_->common.status == CHOLMOD_NOT_POSDEF ||
@@ -133,9 +138,7 @@ SolveStatus CholmodSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& so
   // then spins in sched_yield between the solve's calls (3.3 s of system time in a 3.6 s run
   // of a 1,003-block rock mass, at the same speed), and the result depends on the thread
   // count.
-  std::optional<SingleBlasThread> single;
-  if (impl_->flops < impl_->single_thread_flops)
-    single.emplace();
+  const auto single = impl_->single_thread_if_small();
   const int ok = cholmod_solve2(CHOLMOD_A, impl_->factor, &b, nullptr, &impl_->solution, nullptr,
                                 &impl_->work_y, &impl_->work_e, &impl_->common);
   if (ok == 0 || impl_->solution == nullptr)
