@@ -667,7 +667,8 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     bool just_closed = false;
     double pulling = 0.0; ///< force of the springs on parts that no longer press (tension)
     double pushing = 0.0; ///< force the springs would take on parts that now press
-    double noise = 0.0;   ///< force of the springs over the overlap stretched by the rounding
+    /// force of the springs over the whole overlap stretched by the rounding
+    double spring_noise = 0.0;
   };
   std::vector<LiftOff> lift_off;
   double total_normal = 0.0;
@@ -897,8 +898,10 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     double from = l.part.from;
     double to = l.part.to;
     if (!l.just_closed) {
-      const bool pulls = l.pulling > std::max(options_.tension_tolerance * total_normal, l.noise);
-      const bool pushes = l.pushing > std::max(options_.lift_off_tolerance * total_normal, l.noise);
+      const bool pulls =
+          l.pulling > std::max(options_.tension_tolerance * total_normal, l.spring_noise);
+      const bool pushes =
+          l.pushing > std::max(options_.lift_off_tolerance * total_normal, l.spring_noise);
       // A lift-off point at nearly zero pressure can swing between two places for ever: its
       // first move back is made, and then the contact settles: from then on it only gives
       // up springs that pull (shrinking cannot cycle; what it leaves out penetrates at
