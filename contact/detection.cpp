@@ -7,7 +7,6 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
-#include <set>
 #include <unordered_set>
 #include <utility>
 
@@ -37,12 +36,20 @@ struct Wedge {
   [[nodiscard]] bool contains(const Point2& d) const { return angle_from(start, d) <= extent; }
 };
 
-Wedge wedge(const ContactBoundary& b, int v) {
+/// @param angle  b.angle(v)
+Wedge wedge(const ContactBoundary& b, int v, double angle) {
   Wedge w;
   w.start = (b.position[at(b.next[at(v)])] - b.position[at(v)]).normalized();
   w.finish = (b.position[at(b.previous[at(v)])] - b.position[at(v)]).normalized();
-  w.extent = b.angle(v);
+  w.extent = angle;
   return w;
+}
+
+/// One key for an unordered pair of boundary indices.
+std::uint64_t pair_key(int a, int b) {
+  const auto lo = static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::min(a, b)));
+  const auto hi = static_cast<std::uint64_t>(static_cast<std::uint32_t>(std::max(a, b)));
+  return lo << 32U | hi;
 }
 
 /// Length of the intersection of two arcs of the unit circle, each given by its start angle
@@ -79,7 +86,17 @@ public:
            const DetectionOptions& options,
            const std::vector<std::uint64_t>& keep)
       : b_(boundary), options_(options), keep_(keep.begin(), keep.end()),
-        rounding_(rounding_length(boundary)) {}
+        rounding_(rounding_length(boundary)) {
+    // Every vertex's angle once (an atan2): the tests ask for it many times per vertex.
+    const int n = b_.n_vertices();
+    angle_.resize(at(n));
+    flat_.resize(at(n));
+    for (int v = 0; v < n; ++v) {
+      angle_[at(v)] = b_.angle(v);
+      flat_[at(v)] =
+          std::abs(angle_[at(v)] - 3.14159265358979323846) < options_.angle_overlap ? 1 : 0;
+    }
+  }
 
   std::vector<ContactCandidate> run(DetectionStats* stats) {
     const std::vector<std::pair<int, int>> pairs = broad_phase();
@@ -187,9 +204,9 @@ private:
   /// A vertex on a straight boundary (a point where the boundary crosses a math edge, or a
   /// vertex of a gently curved outline): part of its edges, not an angle. Its contacts are
   /// its edges' edge-to-edge contacts, or the corners of what touches it.
-  bool flat(int v) const {
-    return std::abs(b_.angle(v) - 3.14159265358979323846) < options_.angle_overlap;
-  }
+  bool flat(int v) const { return flat_[at(v)] != 0; }
+
+  Wedge wedge(int v) const { return nmm::wedge(b_, v, angle_[at(v)]); }
 
   void add(const ContactCandidate& c) {
     if (seen_.insert(c.key()).second)
@@ -239,7 +256,7 @@ private:
       return;
     if (low < -options_.penetration && !kept(candidate))
       return;
-    if (edge_pairs_.insert({std::min(e, f), std::max(e, f)}).second) {
+    if (edge_pairs_.insert(pair_key(e, f)).second) {
       ++edge_edge_;
       add(candidate);
     }
@@ -248,7 +265,7 @@ private:
   /// Whether vertex v's contact against edge m is part of an edge-to-edge contact.
   bool covered(int v, int m) const {
     for (const int s : {v, b_.previous[at(v)]}) {
-      if (edge_pairs_.count({std::min(s, m), std::max(s, m)}) != 0)
+      if (edge_pairs_.count(pair_key(s, m)) != 0)
         return true;
     }
     return false;
@@ -257,7 +274,7 @@ private:
   bool covered_pair(int v, int w) const {
     for (const int s : {v, b_.previous[at(v)]}) {
       for (const int f : {w, b_.previous[at(w)]}) {
-        if (edge_pairs_.count({std::min(s, f), std::max(s, f)}) != 0)
+        if (edge_pairs_.count(pair_key(s, f)) != 0)
           return true;
       }
     }
@@ -267,7 +284,7 @@ private:
   /// Angle-to-edge (Shi 3.1 [1] and [3]): the vertex projects inside the edge, is close to
   /// it on its void side, and its wedge fits against the edge.
   void test_vertex_edge(int v, int m) {
-    if (v == m || v == b_.next[at(m)] || flat(v) || covered(v, m))
+    if (v == m || v == b_.next[at(m)] || flat(v))
       return;
     const Point2& p = b_.position[at(v)];
     const Point2& c = b_.position[at(m)];
@@ -290,14 +307,14 @@ private:
       return;
     const Point2 n = b_.outward_normal(m);
     const double gap = n.dot(p - c);
-    if (std::abs(gap) > options_.distance)
+    if (std::abs(gap) > options_.distance || covered(v, m)) // (the look-up after the arithmetic)
       return;
     ContactCandidate candidate;
     candidate.slave = v;
     candidate.master = m;
     if (gap < -options_.penetration && !kept(candidate))
       return;
-    if (!fits_against(wedge(b_, v), n, options_.angle_overlap))
+    if (!fits_against(wedge(v), n, options_.angle_overlap))
       return;
     ++vertex_edge_;
     add(candidate);
@@ -314,8 +331,8 @@ private:
       return true;
     constexpr double tolerance = 1e-9; // rad: a ray of the wedge counts as inside
     auto inside = [&](int vertex, const Point2& direction) {
-      const double a = angle_from(wedge(b_, vertex).start, direction);
-      return a <= b_.angle(vertex) + tolerance || a >= two_pi - tolerance;
+      const double a = angle_from(wedge(vertex).start, direction);
+      return a <= angle_[at(vertex)] + tolerance || a >= two_pi - tolerance;
     };
     return !inside(v, d) && !inside(w, Point2(-d));
   }
@@ -355,8 +372,7 @@ private:
       return;
     if (b_.block[at(v)] == b_.block[at(w)] && !faces_void(v, w))
       return;
-    const std::pair<int, int> key{std::min(v, w), std::max(v, w)};
-    if (!vertex_pairs_.insert(key).second)
+    if (!vertex_pairs_.insert(pair_key(v, w)).second)
       return;
     if (flat(v) && flat(w))
       return; // straight against straight: edge-to-edge contacts, if facing
@@ -394,7 +410,7 @@ private:
       candidate.master = best;
       if (gap > options_.distance || (gap < -options_.penetration && !kept(candidate)))
         return;
-      if (!fits_against(wedge(b_, corner), n, options_.angle_overlap))
+      if (!fits_against(wedge(corner), n, options_.angle_overlap))
         return;
       ++vertex_edge_;
       add(candidate);
@@ -402,8 +418,8 @@ private:
     }
     if (lies_along_side(v, w) || lies_along_side(w, v))
       return;
-    const Wedge a = wedge(b_, v);
-    const Wedge c = wedge(b_, w);
+    const Wedge a = wedge(v);
+    const Wedge c = wedge(w);
     const double sa = direction_angle(a.start);
     const double sc = direction_angle(c.start);
     if (arc_overlap(sa, a.extent, sc, c.extent) >= options_.angle_overlap)
@@ -452,8 +468,10 @@ private:
   std::unordered_set<std::uint64_t> keep_;
   double rounding_ = 0.0; ///< rounding_length() of the boundary
   std::unordered_set<std::uint64_t> seen_;
-  std::set<std::pair<int, int>> edge_pairs_;
-  std::set<std::pair<int, int>> vertex_pairs_;
+  std::vector<double> angle_;                      ///< b_.angle(v) of every vertex
+  std::vector<unsigned char> flat_;                ///< flat(v) of every vertex
+  std::unordered_set<std::uint64_t> edge_pairs_;   ///< pair_key() of the edge-to-edge contacts
+  std::unordered_set<std::uint64_t> vertex_pairs_; ///< pair_key() of the angle pairs tested
   std::vector<ContactCandidate> result_;
   long vertex_edge_ = 0;
   long vertex_vertex_ = 0;
