@@ -91,6 +91,12 @@ void Assembler::add_diagonal(int dof, double value) {
 }
 
 int Assembler::plan(std::span<const int> dofs) {
+  const int id = plan_if_in_pattern(dofs);
+  NMM_ASSERT(id >= 0, "entry (row, column) is not in the sparsity pattern");
+  return id;
+}
+
+int Assembler::plan_if_in_pattern(std::span<const int> dofs) {
   Plan plan;
   plan.n_local = static_cast<int>(dofs.size());
   plan.kept_begin = kept_local_.size();
@@ -129,7 +135,13 @@ int Assembler::plan(std::span<const int> dofs) {
       // The column ends with its diagonal and row <= column: cursor stays in the column.
       while (*cursor < row)
         ++cursor;
-      NMM_ASSERT(*cursor == row, "entry (row, column) is not in the sparsity pattern");
+      if (*cursor != row) { // not in the pattern: no plan
+        kept_local_.resize(plan.kept_begin);
+        kept_dofs_.resize(plan.kept_begin);
+        positions_.resize(plan.position_begin);
+        repeats_.resize(plan.repeat_begin);
+        return -1;
+      }
       const auto position = static_cast<int>(cursor - rows);
       const int p = std::min(a, b);
       const int q = std::max(a, b);

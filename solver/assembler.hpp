@@ -67,6 +67,9 @@ public:
   /// Precomputes the value positions of a coupling and returns its plan id (0, 1, 2, ...),
   /// valid until reset() or clear_plans(). Same preconditions on @p dofs as add().
   [[nodiscard]] int plan(std::span<const int> dofs);
+  /// The same, or -1 (and no plan) when a pair of @p dofs is not in the pattern: one walk
+  /// down each column instead of a search for every pair and then the walk.
+  [[nodiscard]] int plan_if_in_pattern(std::span<const int> dofs);
 
   /// Adds the upper triangle of the symmetric @p local with the positions of plan
   /// @p plan_id: the same result as add(dofs, local) with that plan's dofs, without search.

@@ -428,23 +428,14 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
                    impl_->coupling_start.begin()) &&
         std::equal(flat.begin(), flat.begin() + starts[fixed], impl_->coupling_dofs.begin());
     const std::size_t first_new = fixed_same ? fixed : 0;
-    auto fits = [&] {
-      for (std::size_t k = first_new; k + 1 < starts.size(); ++k) {
-        const std::span<const int> dofs = coupling(k);
-        for (std::size_t i = 0; i < dofs.size(); ++i) {
-          for (std::size_t j = i; j < dofs.size() && dofs[i] >= 0; ++j) {
-            if (dofs[j] >= 0 &&
-                !impl_->pattern.contains(std::min(dofs[i], dofs[j]), std::max(dofs[i], dofs[j])))
-              return false;
-          }
-        }
-      }
-      return true;
-    };
-    if (!same && same_size && fits()) {
+    bool planned = false; // new plans in the last pattern
+    if (!same && same_size) {
       impl_->stiffness->truncate_plans(static_cast<int>(first_new));
-      for (std::size_t k = first_new; k + 1 < starts.size(); ++k)
-        (void)impl_->stiffness->plan(coupling(k));
+      planned = true;
+      for (std::size_t k = first_new; k + 1 < starts.size() && planned; ++k)
+        planned = impl_->stiffness->plan_if_in_pattern(coupling(k)) >= 0;
+    }
+    if (planned) {
       impl_->coupling_start = starts;
       impl_->coupling_dofs = flat;
       ++counters_.plan_rebuilds;

@@ -270,6 +270,34 @@ TEST(Assembler, TruncatedPlansKeepTheFirstAndNewOnesFollowThem) {
   EXPECT_EQ(assembler.n_plans(), 0);
 }
 
+TEST(Assembler, PlanIfInPatternRefusesACouplingOutsideItAndKeepsTheOtherPlans) {
+  // The time stepper plans a step's contacts in the last pattern when they fit it, and
+  // builds a new pattern when one does not: a refused coupling leaves no trace.
+  const Problem problem = make_problem(200, 100, 23, true);
+  Assembler assembler(problem.pattern);
+  for (std::size_t g = 0; g < 60; ++g)
+    EXPECT_EQ(assembler.plan_if_in_pattern(problem.groups[g]), static_cast<int>(g));
+  // Dofs 0 and 199 are coupled by no group of the pattern (checked), in any order, with
+  // an eliminated dof and a coupled pair beside them.
+  ASSERT_FALSE(problem.pattern.contains(0, 199));
+  for (const std::vector<int>& outside :
+       {std::vector<int>{0, 199}, std::vector<int>{199, -1, 0}, std::vector<int>{5, 5, 199, 0}}) {
+    EXPECT_EQ(assembler.plan_if_in_pattern(outside), -1);
+    EXPECT_EQ(assembler.n_plans(), 60);
+  }
+  for (std::size_t g = 60; g < problem.groups.size(); ++g)
+    EXPECT_EQ(assembler.plan_if_in_pattern(problem.groups[g]), static_cast<int>(g));
+  // The same matrix as with plan(), bit for bit (the same positions, the same order).
+  Assembler reference(problem.pattern);
+  for (const auto& dofs : problem.groups)
+    static_cast<void>(reference.plan(dofs));
+  for (std::size_t g = 0; g < problem.groups.size(); ++g) {
+    assembler.add(static_cast<int>(g), problem.locals[g]);
+    reference.add(static_cast<int>(g), problem.locals[g]);
+  }
+  EXPECT_EQ(relative_difference(assembler.matrix(), reference.matrix()), 0.0);
+}
+
 // P1-like couplings on a grid with 2 dofs per node, SPD local matrices: CHOLMOD must factor
 // the assembled upper triangle and solve to rounding.
 TEST(Assembler, AssembledMatrixFactorsWithCholmodAndSolves) {
