@@ -619,24 +619,27 @@ std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
 
 bool ContactSystem::contribution(const Model& model,
                                  int i,
-                                 Eigen::MatrixXd& stiffness,
+                                 Eigen::MatrixXd* stiffness,
                                  Eigen::VectorXd& load) const {
   const ContactPoint& p = points_[at(i)];
   // One kinematics: its unknowns are point_dofs(i), in that order.
   const Kinematics& k = cached_kinematics(model, p, at(i));
   const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
-  stiffness.setZero(n, n);
+  if (stiffness != nullptr)
+    stiffness->setZero(n, n);
   load.setZero(n);
   if (p.mode == ContactMode::open)
     return false;
   const Eigen::VectorXd& hn = k.hn;
   const Eigen::VectorXd& hs = k.hs;
   // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
-  stiffness += p.stiffness * hn * hn.transpose();
+  if (stiffness != nullptr)
+    *stiffness += p.stiffness * hn * hn.transpose();
   load -= p.stiffness * k.g0 * hn;
   if (p.mode == ContactMode::lock) {
     // Shear spring (eq. 3.25-3.26) anchored at P0.
-    stiffness += p.stiffness * hs * hs.transpose();
+    if (stiffness != nullptr)
+      *stiffness += p.stiffness * hs * hs.transpose();
     load -= p.stiffness * k.s0 * hs;
   } else if (const double friction = friction_force(p); friction != 0.0) {
     // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),

@@ -148,10 +148,11 @@ public:
   /// for the whole step.
   [[nodiscard]] std::vector<int> point_dofs(const Model& model, int i) const;
 
-  /// Springs and friction loads of point i in its current mode, on point_dofs(i).
+  /// Springs and friction loads of point i in its current mode, on point_dofs(i); the loads
+  /// only when @p stiffness is null (an iteration that keeps the factor: friction changed).
   /// @return whether a friction load was assembled (friction_force() of the point is not 0).
   bool
-  contribution(const Model& model, int i, Eigen::MatrixXd& stiffness, Eigen::VectorXd& load) const;
+  contribution(const Model& model, int i, Eigen::MatrixXd* stiffness, Eigen::VectorXd& load) const;
 
   /// After a solve with step displacement @p raw: new modes by Shi's mode table, new lift-off
   /// points and new friction loads.

@@ -557,7 +557,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           const ContactPoint& point = impl_->contact->points()[at(i)];
           if (point.mode == ContactMode::open)
             continue; // no spring, no load
-          if (impl_->contact->contribution(model_, i, spring, load))
+          if (impl_->contact->contribution(model_, i, assemble ? &spring : nullptr, load))
             ++counters_.friction_terms;
           const std::vector<int>& dofs = contact_dofs[at(i)];
           for (std::size_t j = 0; j < dofs.size(); ++j)

@@ -69,7 +69,7 @@ TEST(Goodman, EdgeToEdgeContactIsTheGoodmanJointElement) {
   for (int i = 0; i < contact->n_points(); ++i) {
     Eigen::MatrixXd spring;
     Eigen::VectorXd load;
-    contact->contribution(s.model, i, spring, load);
+    contact->contribution(s.model, i, &spring, load);
     const std::vector<int> dofs = contact->point_dofs(s.model, i);
     for (std::size_t a = 0; a < dofs.size(); ++a) {
       for (std::size_t b = 0; b < dofs.size(); ++b) {
