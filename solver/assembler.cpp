@@ -136,10 +136,7 @@ int Assembler::plan_if_in_pattern(std::span<const int> dofs) {
       while (*cursor < row)
         ++cursor;
       if (*cursor != row) { // not in the pattern: no plan
-        kept_local_.resize(plan.kept_begin);
-        kept_dofs_.resize(plan.kept_begin);
-        positions_.resize(plan.position_begin);
-        repeats_.resize(plan.repeat_begin);
+        drop_data_from(plan);
         return -1;
       }
       const auto position = static_cast<int>(cursor - rows);
@@ -199,12 +196,15 @@ void Assembler::truncate_plans(int first) {
   NMM_ASSERT(first >= 0 && first <= n_plans(), "no such plan");
   if (first == n_plans())
     return;
-  const Plan& plan = plans_[static_cast<std::size_t>(first)];
+  drop_data_from(plans_[static_cast<std::size_t>(first)]);
+  plans_.resize(static_cast<std::size_t>(first));
+}
+
+void Assembler::drop_data_from(const Plan& plan) {
   kept_local_.resize(plan.kept_begin);
   kept_dofs_.resize(plan.kept_begin);
   positions_.resize(plan.position_begin);
   repeats_.resize(plan.repeat_begin);
-  plans_.resize(static_cast<std::size_t>(first));
 }
 
 void Assembler::clear_plans() {

@@ -111,6 +111,8 @@ private:
   };
 
   [[nodiscard]] int search_position(int row, int column) const;
+  /// Shrinks the shared arrays to where @p plan's data begins (that plan and all later).
+  void drop_data_from(const Plan& plan);
 
   SparseMatrix matrix_;
   Eigen::VectorXd rhs_;
