@@ -523,35 +523,38 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   Kinematics k;
   const std::span<const int> slave_dofs = model.element_dofs(slave_element);
   const std::span<const int> master_dofs = model.element_dofs(master_element);
-  // The slave element's unknowns (distinct) come first, at their own positions; then the
-  // master's that the slave does not have. Where each master unknown sits is found once.
-  k.dofs.assign(slave_dofs.begin(), slave_dofs.end());
-  std::vector<Eigen::Index> master_local(master_dofs.size());
-  for (std::size_t i = 0; i < master_dofs.size(); ++i) {
-    const auto end = k.dofs.begin() + static_cast<std::ptrdiff_t>(slave_dofs.size());
-    const auto it = std::find(k.dofs.begin(), end, master_dofs[i]);
-    master_local[i] = it - k.dofs.begin();
-    if (it == end) {
-      master_local[i] = static_cast<Eigen::Index>(k.dofs.size());
-      k.dofs.push_back(master_dofs[i]);
-    }
-  }
-  const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
-  k.hn = Eigen::VectorXd::Zero(n);
-  k.hs = Eigen::VectorXd::Zero(n);
   const ElementShape& slave_shape = shape(slave_element);
   const ElementShape& master_shape = shape(master_element);
-  // Adds T_element(x)^T c to h, on the slave's unknowns (local = nullptr: at their own
-  // positions) or the master's.
+  // The unknowns the point's terms involve, each at the position of its first use: the
+  // slave element's first (all of an NMM element's or a DDA block's, a VEM block's edge
+  // vertices), then the master's that the slave does not have. Where each of the elements'
+  // unknowns sits is found once (-1: not used yet).
+  const std::size_t bound = slave_dofs.size() + master_dofs.size();
+  k.dofs.reserve(bound);
+  k.hn = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(bound));
+  k.hs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(bound));
+  std::vector<Eigen::Index> slave_local(slave_dofs.size(), -1);
+  std::vector<Eigen::Index> master_local(master_dofs.size(), -1);
   PointInterpolation t;
-  auto add = [&](Eigen::VectorXd& h, const ElementShape& shape, const Eigen::Index* local,
-                 const Point2& x, const Point2& c) {
-    shape.interpolation_at(x, t);
-    NMM_ASSERT(static_cast<std::size_t>(t.cols()) ==
-                   (local != nullptr ? master_dofs : slave_dofs).size(),
-               "an element's interpolation has a column per unknown");
-    for (Eigen::Index j = 0; j < t.cols(); ++j)
-      h(local != nullptr ? local[j] : j) += t(0, j) * c.x() + t(1, j) * c.y();
+  std::vector<int> columns;
+  // Adds T_element(x)^T c to hn (or hs if @p shear), on the slave's unknowns or the master's.
+  auto add = [&](bool shear, bool on_master, const Point2& x, const Point2& c) {
+    (on_master ? master_shape : slave_shape).interpolation_at(x, t, columns);
+    std::vector<Eigen::Index>& local = on_master ? master_local : slave_local;
+    Eigen::VectorXd& h = shear ? k.hs : k.hn;
+    for (std::size_t j = 0; j < columns.size(); ++j) {
+      const std::size_t column = at(columns[j]);
+      NMM_ASSERT(column < local.size(), "an element's interpolation has a column per unknown");
+      if (local[column] < 0) { // an unknown the other element may have used already
+        const int dof = on_master ? master_dofs[column] : slave_dofs[column];
+        const auto found = std::find(k.dofs.begin(), k.dofs.end(), dof);
+        local[column] = found - k.dofs.begin();
+        if (found == k.dofs.end())
+          k.dofs.push_back(dof);
+      }
+      const auto col = static_cast<Eigen::Index>(j);
+      h(local[column]) += t(0, col) * c.x() + t(1, col) * c.y();
+    }
   };
   const Point2& a = boundary_.position[at(master)];
   const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
@@ -561,9 +564,9 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
   // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
   k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset;
-  add(k.hn, slave_shape, nullptr, slave, perp(b - a) / l);
-  add(k.hn, master_shape, master_local.data(), a, perp(slave - b) / l);
-  add(k.hn, master_shape, master_local.data(), b, Point2(-perp(slave - a) / l));
+  add(false, false, slave, perp(b - a) / l);
+  add(false, true, a, perp(slave - b) / l);
+  add(false, true, b, Point2(-perp(slave - a) / l));
   if (model.order >= 1 && master_shape.nmm() != nullptr) {
     // The master terms above move the foot of the slave point, A + t (B - A), with the
     // straight line through the moved ends A and B: exact for a straight edge (order 0, DDA,
@@ -571,15 +574,19 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
     // with the master's own field there: n . (T(foot) - (1 - t) T(A) - t T(B)) d less gap.
     const double foot = (slave - a).dot(b - a) / (l * l);
     const Point2 normal = perp(b - a) / l;
-    add(k.hn, master_shape, master_local.data(), a + foot * (b - a), Point2(-normal));
-    add(k.hn, master_shape, master_local.data(), a, (1.0 - foot) * normal);
-    add(k.hn, master_shape, master_local.data(), b, foot * normal);
+    add(false, true, a + foot * (b - a), Point2(-normal));
+    add(false, true, a, (1.0 - foot) * normal);
+    add(false, true, b, foot * normal);
   }
   // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
   const Point2 anchor = a + p.anchor * (b - a);
   k.s0 = (slave - anchor).dot(tangent);
-  add(k.hs, slave_shape, nullptr, slave, tangent);
-  add(k.hs, master_shape, master_local.data(), anchor, Point2(-tangent));
+  add(true, false, slave, tangent);
+  add(true, true, anchor, Point2(-tangent));
+  if (k.dofs.size() < bound) { // a VEM block's edge, or unknowns the elements share
+    k.hn.conservativeResize(static_cast<Eigen::Index>(k.dofs.size()));
+    k.hs.conservativeResize(static_cast<Eigen::Index>(k.dofs.size()));
+  }
   return k;
 }
 

@@ -3,6 +3,8 @@
 
 #include "mesh/error.hpp"
 
+#include <numeric>
+
 namespace nmm {
 
 namespace {
@@ -31,6 +33,18 @@ PointInterpolation ElementShape::interpolation_at(const Point2& x) const {
 
 void ElementShape::interpolation_at(const Point2& x, PointInterpolation& out) const {
   std::visit([&](const auto& s) { out = s.interpolation_at(x); }, shape_);
+}
+
+void ElementShape::interpolation_at(const Point2& x,
+                                    PointInterpolation& out,
+                                    std::vector<int>& columns) const {
+  if (const VemShape* vem = std::get_if<VemShape>(&shape_)) {
+    vem->interpolation_at(x, out, columns);
+    return;
+  }
+  interpolation_at(x, out);
+  columns.resize(static_cast<std::size_t>(out.cols()));
+  std::iota(columns.begin(), columns.end(), 0);
 }
 
 Point2 ElementShape::displacement_at(const Point2& x, std::span<const double> d) const {

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <span>
 #include <variant>
+#include <vector>
 
 namespace nmm {
 
@@ -43,6 +44,11 @@ public:
   [[nodiscard]] PointInterpolation interpolation_at(const Point2& x) const;
   /// The same into @p out (no allocation when it has the size: contact loops).
   void interpolation_at(const Point2& x, PointInterpolation& out) const;
+  /// The same on the unknowns it involves: @p columns gets their local indices and @p out the
+  /// matching columns of T(x). All of an NMM element's or a DDA block's; on a VEM block's
+  /// boundary only those of the edge's vertices (a contact on a 188-vertex foundation block
+  /// couples 4 of its 376 unknowns).
+  void interpolation_at(const Point2& x, PointInterpolation& out, std::vector<int>& columns) const;
   [[nodiscard]] Point2 displacement_at(const Point2& x, std::span<const double> d) const;
   /// Where the material point at @p x goes with the step displacement @p d: x + T(x) d,
   /// except for DDA blocks, which turn by their rotation exactly (dda_block.hpp).

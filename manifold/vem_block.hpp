@@ -40,6 +40,13 @@ public:
   /// the linear interpolation between the edge's two vertices, which is exact; inside, the
   /// projection T*(x) H (the virtual field itself is not known there).
   [[nodiscard]] Eigen::Matrix<double, 2, Eigen::Dynamic> interpolation_at(const Point2& x) const;
+  /// The same on the unknowns it involves: @p columns gets their local indices (on the
+  /// boundary the u and v of the edge's vertices that have a weight, one vertex at a vertex;
+  /// inside, all) and @p out the matching columns of interpolation_at(x). A contact on the
+  /// block couples 4 of its unknowns, not all 2n.
+  void interpolation_at(const Point2& x,
+                        Eigen::Matrix<double, 2, Eigen::Dynamic>& out,
+                        std::vector<int>& columns) const;
   [[nodiscard]] Point2 displacement_at(const Point2& x, std::span<const double> d) const;
   /// The constant strain of Pi_P u (eq. 40): P_c d.
   [[nodiscard]] LinearField3 strain(std::span<const double> d) const;

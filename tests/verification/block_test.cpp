@@ -9,6 +9,7 @@
 #include "verification_support.hpp"
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -276,6 +277,45 @@ TEST(VemBlock, CarriedStabilisationForceTurnsWithTheBlock) {
   EXPECT_LT(load_error, 1.1 * shortfall);
   EXPECT_LT(resultant.norm(), 1e-9 * load0.norm());
   EXPECT_LT(std::abs(moment), 1e-9 * load0.norm());
+}
+
+TEST(VemBlock, ContactCouplesOnlyTheVerticesOfTheEdgesInContact) {
+  // A row of four VEM blocks cut from one rock by joints, on a VEM base whose top carries a
+  // vertex at every joint's end. A contact's gap and shear move with its slave point and the
+  // two ends of its master edge (and the anchor on that edge): on a VEM block those are
+  // vertices or points on one edge, so a contact couples at most 4 vertices (8 unknowns),
+  // whatever the blocks' sizes. Coupling every unknown of both blocks made a contact on the
+  // 188-vertex foundation of the 10,004-block rock mass a 380 x 380 matrix (4.9 of its 10 s
+  // of steps; docs/benchmarks.md, "Blocks"). Exact counts, no tolerance.
+  const ElasticMaterial rock = elastic(1e10, 0.0, 2500.0, PlaneCondition::strain);
+  const Point2 o(1000.0, -500.0);
+  std::vector<MaterialRegion> regions{
+      testing::rectangle("base", o.x() - 1.0, o.y() - 1.0, o.x() + 5.0, o.y()),
+      testing::rectangle("rock", o.x(), o.y(), o.x() + 4.0, o.y() + 1.0)};
+  std::vector<NamedCurve> curves;
+  std::vector<int> joints;
+  for (int k = 1; k < 4; ++k) {
+    curves.push_back(testing::line("v" + std::to_string(k), o + Point2(k, 0), o + Point2(k, 1)));
+    joints.push_back(static_cast<int>(curves.size()) - 1);
+  }
+  testing::Setup s = testing::make_setup(regions, curves, joints, nullptr, 0.5, rock, 0,
+                                         {ElementKind::vem, ElementKind::vem});
+  ASSERT_EQ(s.model.n_elements(), 5);
+  std::size_t largest_block = 0;
+  for (int e = 0; e < s.model.n_elements(); ++e)
+    largest_block = std::max(largest_block, s.model.element_dofs(e).size());
+  auto contact = testing::contact_for(s.model, 40.0 * rock.young, {30.0 * pi / 180.0, 0.0, 0.0});
+  contact->begin_step(s.model, 1e-3);
+  ASSERT_GT(contact->n_points(), 0);
+  std::size_t most = 0;
+  for (int i = 0; i < contact->n_points(); ++i)
+    most = std::max(most, contact->point_dofs(s.model, i).size());
+  std::printf("vem row on a vem base: %d contact points, each on at most %zu unknowns (the "
+              "largest block has %zu)\n",
+              contact->n_points(), most, largest_block);
+  EXPECT_GE(largest_block, 16U); // the base: at least 8 vertices
+  EXPECT_LE(most, 8U);
+  EXPECT_GE(most, 6U); // a vertex and an edge at least
 }
 
 } // namespace
