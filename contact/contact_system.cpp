@@ -526,8 +526,10 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   const ElementShape& slave_shape = shape(slave_element);
   const ElementShape& master_shape = shape(master_element);
   // The unknowns the point's terms involve, each at the position of its first use: the
-  // slave element's first (all of an NMM element's or a DDA block's, a VEM block's edge
-  // vertices), then the master's that the slave does not have. Where each of the elements'
+  // slave element's first (all of an NMM element's or a DDA block's, a VEM block's slave
+  // edge's two vertices), then the master's that the slave does not have. They depend on
+  // the point's edges only, not on where it sits along them: the step's sparsity pattern
+  // and plans are made with them at its start (point_dofs()). Where each of the elements'
   // unknowns sits is found once (-1: not used yet).
   const std::size_t bound = slave_dofs.size() + master_dofs.size();
   k.dofs.reserve(bound);
@@ -537,9 +539,17 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   std::vector<Eigen::Index> master_local(master_dofs.size(), -1);
   PointInterpolation t;
   std::vector<int> columns;
-  // Adds T_element(x)^T c to hn (or hs if @p shear), on the slave's unknowns or the master's.
+  const Point2& slave_a = boundary_.position[at(slave_edge)];
+  const Point2& slave_b = boundary_.position[at(boundary_.next[at(slave_edge)])];
+  const Point2& a = boundary_.position[at(master)];
+  const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
+  // Adds T_element(x)^T c to hn (or hs if @p shear), on the slave's unknowns (x on the slave
+  // edge's line) or the master's (x on the master edge's line).
   auto add = [&](bool shear, bool on_master, const Point2& x, const Point2& c) {
-    (on_master ? master_shape : slave_shape).interpolation_at(x, t, columns);
+    if (on_master)
+      master_shape.interpolation_on_edge(x, a, b, t, columns);
+    else
+      slave_shape.interpolation_on_edge(x, slave_a, slave_b, t, columns);
     std::vector<Eigen::Index>& local = on_master ? master_local : slave_local;
     Eigen::VectorXd& h = shear ? k.hs : k.hn;
     for (std::size_t j = 0; j < columns.size(); ++j) {
@@ -556,8 +566,6 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
       h(local[column]) += t(0, col) * c.x() + t(1, col) * c.y();
     }
   };
-  const Point2& a = boundary_.position[at(master)];
-  const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
   const double l = (b - a).norm();
   const Point2 tangent = (b - a) / l;
   // Normal gap (material on the left of a -> b; positive on the void side):

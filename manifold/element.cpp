@@ -35,11 +35,13 @@ void ElementShape::interpolation_at(const Point2& x, PointInterpolation& out) co
   std::visit([&](const auto& s) { out = s.interpolation_at(x); }, shape_);
 }
 
-void ElementShape::interpolation_at(const Point2& x,
-                                    PointInterpolation& out,
-                                    std::vector<int>& columns) const {
+void ElementShape::interpolation_on_edge(const Point2& x,
+                                         const Point2& a,
+                                         const Point2& b,
+                                         PointInterpolation& out,
+                                         std::vector<int>& columns) const {
   if (const VemShape* vem = std::get_if<VemShape>(&shape_)) {
-    vem->interpolation_at(x, out, columns);
+    vem->interpolation_on_edge(x, a, b, out, columns);
     return;
   }
   interpolation_at(x, out);

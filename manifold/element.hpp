@@ -44,11 +44,16 @@ public:
   [[nodiscard]] PointInterpolation interpolation_at(const Point2& x) const;
   /// The same into @p out (no allocation when it has the size: contact loops).
   void interpolation_at(const Point2& x, PointInterpolation& out) const;
-  /// The same on the unknowns it involves: @p columns gets their local indices and @p out the
-  /// matching columns of T(x). All of an NMM element's or a DDA block's; on a VEM block's
-  /// boundary only those of the edge's vertices (a contact on a 188-vertex foundation block
-  /// couples 4 of its 376 unknowns).
-  void interpolation_at(const Point2& x, PointInterpolation& out, std::vector<int>& columns) const;
+  /// T(x) for a point @p x on the line of the element's boundary edge @p a -> @p b, on the
+  /// unknowns it involves: @p columns gets their local indices and @p out the matching
+  /// columns. An NMM element or a DDA block: interpolation_at(x) on all its unknowns. A VEM
+  /// block: the edge's two vertices (VemShape::interpolation_on_edge), so that a contact on a
+  /// 188-vertex foundation block couples 4 of its 376 unknowns, the same all through a step.
+  void interpolation_on_edge(const Point2& x,
+                             const Point2& a,
+                             const Point2& b,
+                             PointInterpolation& out,
+                             std::vector<int>& columns) const;
   [[nodiscard]] Point2 displacement_at(const Point2& x, std::span<const double> d) const;
   /// Where the material point at @p x goes with the step displacement @p d: x + T(x) d,
   /// except for DDA blocks, which turn by their rotation exactly (dda_block.hpp).

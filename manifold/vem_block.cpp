@@ -70,19 +70,8 @@ VemShape::VemShape(std::span<const Polygon> polygons) {
 }
 
 Eigen::Matrix<double, 2, Eigen::Dynamic> VemShape::interpolation_at(const Point2& x) const {
-  Eigen::Matrix<double, 2, Eigen::Dynamic> sparse;
-  std::vector<int> columns;
-  interpolation_at(x, sparse, columns);
   Eigen::Matrix<double, 2, Eigen::Dynamic> t =
       Eigen::Matrix<double, 2, Eigen::Dynamic>::Zero(2, n_dofs());
-  for (std::size_t j = 0; j < columns.size(); ++j)
-    t.col(columns[j]) = sparse.col(static_cast<Eigen::Index>(j));
-  return t;
-}
-
-void VemShape::interpolation_at(const Point2& x,
-                                Eigen::Matrix<double, 2, Eigen::Dynamic>& out,
-                                std::vector<int>& columns) const {
   // The nearest edge.
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
@@ -100,28 +89,45 @@ void VemShape::interpolation_at(const Point2& x,
       best_s = s;
     }
   }
-  columns.clear();
   if (best >= 0 && best_distance <= 1e-9 * size_) {
-    // The edge's vertices with a weight: a point at a vertex moves with that vertex alone.
-    const std::pair<int, double> weights[] = {{best, 1.0 - best_s}, {next_[at(best)], best_s}};
-    int count = 0;
-    for (const auto& [vertex, weight] : weights)
-      count += weight != 0.0 ? 1 : 0;
-    out.setZero(2, 2 * count);
-    for (const auto& [vertex, weight] : weights) {
-      if (weight == 0.0)
-        continue;
-      const auto j = static_cast<Eigen::Index>(columns.size());
-      out(0, j) = weight;
-      out(1, j + 1) = weight;
-      columns.push_back(2 * vertex);
-      columns.push_back(2 * vertex + 1);
-    }
-    return;
+    const int j = next_[at(best)];
+    t(0, 2 * best) = 1.0 - best_s;
+    t(1, 2 * best + 1) = 1.0 - best_s;
+    t(0, 2 * j) += best_s;
+    t(1, 2 * j + 1) += best_s;
+    return t;
   }
-  out = dda_basis(origin_, x) * projector_;
-  for (int j = 0; j < n_dofs(); ++j)
-    columns.push_back(j);
+  return dda_basis(origin_, x) * projector_;
+}
+
+void VemShape::interpolation_on_edge(const Point2& x,
+                                     const Point2& a,
+                                     const Point2& b,
+                                     Eigen::Matrix<double, 2, Eigen::Dynamic>& out,
+                                     std::vector<int>& columns) const {
+  // The edge a -> b among the block's: its own vertices (the contact boundary and the shape
+  // are built from the same coordinates), else the nearest pair.
+  int edge = -1;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n_vertices() && nearest > 0.0; ++i) {
+    const double d = (vertices_[at(i)] - a).norm() + (vertices_[at(next_[at(i)])] - b).norm();
+    if (d < nearest) {
+      nearest = d;
+      edge = i;
+    }
+  }
+  const int i = edge;
+  const int j = next_[at(i)];
+  const Point2 ab = vertices_[at(j)] - vertices_[at(i)];
+  const double length2 = ab.squaredNorm();
+  // As interpolation_at() on the edge; past its ends, the edge's line.
+  const double s = length2 > 0.0 ? (x - vertices_[at(i)]).dot(ab) / length2 : 0.0;
+  out.setZero(2, 4);
+  out(0, 0) = 1.0 - s;
+  out(1, 1) = 1.0 - s;
+  out(0, 2) = s;
+  out(1, 3) = s;
+  columns.assign({2 * i, 2 * i + 1, 2 * j, 2 * j + 1});
 }
 
 Point2 VemShape::displacement_at(const Point2& x, std::span<const double> d) const {

@@ -40,13 +40,17 @@ public:
   /// the linear interpolation between the edge's two vertices, which is exact; inside, the
   /// projection T*(x) H (the virtual field itself is not known there).
   [[nodiscard]] Eigen::Matrix<double, 2, Eigen::Dynamic> interpolation_at(const Point2& x) const;
-  /// The same on the unknowns it involves: @p columns gets their local indices (on the
-  /// boundary the u and v of the edge's vertices that have a weight, one vertex at a vertex;
-  /// inside, all) and @p out the matching columns of interpolation_at(x). A contact on the
-  /// block couples 4 of its unknowns, not all 2n.
-  void interpolation_at(const Point2& x,
-                        Eigen::Matrix<double, 2, Eigen::Dynamic>& out,
-                        std::vector<int>& columns) const;
+  /// The interpolation at @p x on the line of the block's boundary edge @p a -> @p b, on
+  /// the edge's two vertices: @p columns gets their u and v (local indices) and @p out the
+  /// linear weights (1 - s, s), s = (x - a).(b - a) / |b - a|². On the edge that is
+  /// interpolation_at(x), exactly; past its ends the edge's line (a contact's shear anchor
+  /// that has slid past the end of its edge). A contact on the block so couples 4 of its 2n
+  /// unknowns, the same 4 wherever its points move along the edge in a step.
+  void interpolation_on_edge(const Point2& x,
+                             const Point2& a,
+                             const Point2& b,
+                             Eigen::Matrix<double, 2, Eigen::Dynamic>& out,
+                             std::vector<int>& columns) const;
   [[nodiscard]] Point2 displacement_at(const Point2& x, std::span<const double> d) const;
   /// The constant strain of Pi_P u (eq. 40): P_c d.
   [[nodiscard]] LinearField3 strain(std::span<const double> d) const;

@@ -560,6 +560,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           if (impl_->contact->contribution(model_, i, assemble ? &spring : nullptr, load))
             ++counters_.friction_terms;
           const std::vector<int>& dofs = contact_dofs[at(i)];
+          NMM_ASSERT(static_cast<std::size_t>(load.size()) == dofs.size(),
+                     "a contact point's unknowns stay those of the step's start");
           for (std::size_t j = 0; j < dofs.size(); ++j)
             f_iteration(dofs[j]) += load(static_cast<Eigen::Index>(j));
           if (assemble)

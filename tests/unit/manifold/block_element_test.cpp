@@ -55,45 +55,48 @@ TEST(VemBlock, ProjectorReproducesLinearFieldsOnAConcaveBlockWithAHole) {
   EXPECT_NEAR(shape.rotation(values), 0.5 * (g(1, 0) - g(0, 1)), 1e-12);
 }
 
-TEST(VemBlock, BoundaryInterpolationInvolvesOnlyTheEdgesVertices) {
+TEST(VemBlock, InterpolationOnAnEdgeInvolvesOnlyItsTwoVertices) {
   // On an edge the VEM displacement is the linear interpolation of the edge's two vertices
-  // (exact), so T(x) has four nonzero columns there, two at a vertex, and the projection's
-  // 2n inside. interpolation_at(x, out, columns) gives exactly those columns, with the
-  // values of the full interpolation_at(x) (compared bit for bit: the same arithmetic).
+  // (exact), so interpolation_on_edge() gives those four columns, with the values of the
+  // full interpolation_at(x) (compared bit for bit: the same arithmetic), the same four at
+  // the edge's ends (a point moving along the edge keeps its unknowns), and the edge's line
+  // past them (weights 1 - s and s, s = 1.5: -0.5 and 1.5).
   const std::vector<Polygon> block = concave_block();
   const VemShape shape(block);
   const ElementShape element(shape);
   const Point2 o(1000.0, -500.0);
+  const auto& v = shape.vertices();
   struct Case {
-    Point2 x;
-    std::vector<int> columns;
+    int from; ///< the edge's first vertex (outer loop 0-5, hole 6-9)
+    int to;
+    double s;
   };
-  // Outer loop vertices 0-5 (o, o+(2,0), o+(2,1), o+(1,1), o+(1,2), o+(0,2)), hole 6-9.
-  for (const Case& c :
-       {Case{o + Point2(0.5, 0.0), {0, 1, 2, 3}}, Case{o + Point2(1.0, 1.5), {6, 7, 8, 9}},
-        Case{o + Point2(0.25, 0.5), {12, 13, 14, 15}}, Case{o + Point2(2.0, 1.0), {4, 5}},
-        Case{o + Point2(1.5, 0.5), {}}}) {
+  for (const Case& c : {Case{0, 1, 0.25}, Case{3, 4, 0.5}, Case{6, 7, 0.75}, Case{9, 6, 0.5},
+                        Case{1, 2, 0.0}, Case{1, 2, 1.0}, Case{4, 5, 1.5}}) {
+    const Point2& a = v[static_cast<std::size_t>(c.from)];
+    const Point2& b = v[static_cast<std::size_t>(c.to)];
+    const Point2 x = a + c.s * (b - a);
     PointInterpolation sparse;
     std::vector<int> columns;
-    element.interpolation_at(c.x, sparse, columns);
-    const PointInterpolation full = shape.interpolation_at(c.x);
-    std::vector<int> expected = c.columns;
-    if (expected.empty()) { // inside: all of them
-      for (int j = 0; j < shape.n_dofs(); ++j)
-        expected.push_back(j);
-    }
-    EXPECT_EQ(columns, expected) << c.x.transpose();
-    ASSERT_EQ(sparse.cols(), static_cast<Eigen::Index>(columns.size()));
+    element.interpolation_on_edge(x, a, b, sparse, columns);
+    EXPECT_EQ(columns, (std::vector<int>{2 * c.from, 2 * c.from + 1, 2 * c.to, 2 * c.to + 1}))
+        << c.from << "-" << c.to << " at " << c.s;
+    ASSERT_EQ(sparse.cols(), 4);
     PointInterpolation scattered = PointInterpolation::Zero(2, shape.n_dofs());
     for (std::size_t j = 0; j < columns.size(); ++j)
       scattered.col(columns[j]) = sparse.col(static_cast<Eigen::Index>(j));
-    EXPECT_EQ(scattered, full) << c.x.transpose();
+    if (c.s <= 1.0) {
+      EXPECT_EQ(scattered, shape.interpolation_at(x)) << c.from << "-" << c.to << " at " << c.s;
+    } else {
+      EXPECT_NEAR(sparse(0, 0), 1.0 - c.s, 1e-15);
+      EXPECT_NEAR(sparse(1, 3), c.s, 1e-15);
+    }
   }
   // A DDA block's interpolation involves all six unknowns everywhere.
   const ElementShape dda(DdaShape(o + Point2(1.0, 1.0)));
   PointInterpolation t;
   std::vector<int> columns;
-  dda.interpolation_at(o, t, columns);
+  dda.interpolation_on_edge(o, o, o + Point2(2.0, 0.0), t, columns);
   EXPECT_EQ(columns, (std::vector<int>{0, 1, 2, 3, 4, 5}));
   EXPECT_EQ(t, dda.interpolation_at(o));
 }
