@@ -287,24 +287,13 @@ TEST(VemBlock, ContactCouplesOnlyTheVerticesOfTheEdgesInContact) {
   // whatever the blocks' sizes. Coupling every unknown of both blocks made a contact on the
   // 188-vertex foundation of the 10,004-block rock mass a 380 x 380 matrix (4.9 of its 10 s
   // of steps; docs/benchmarks.md, "Blocks"). Exact counts, no tolerance.
-  const ElasticMaterial rock = elastic(1e10, 0.0, 2500.0, PlaneCondition::strain);
-  const Point2 o(1000.0, -500.0);
-  std::vector<MaterialRegion> regions{
-      testing::rectangle("base", o.x() - 1.0, o.y() - 1.0, o.x() + 5.0, o.y()),
-      testing::rectangle("rock", o.x(), o.y(), o.x() + 4.0, o.y() + 1.0)};
-  std::vector<NamedCurve> curves;
-  std::vector<int> joints;
-  for (int k = 1; k < 4; ++k) {
-    curves.push_back(testing::line("v" + std::to_string(k), o + Point2(k, 0), o + Point2(k, 1)));
-    joints.push_back(static_cast<int>(curves.size()) - 1);
-  }
-  testing::Setup s = testing::make_setup(regions, curves, joints, nullptr, 0.5, rock, 0,
-                                         {ElementKind::vem, ElementKind::vem});
+  testing::Setup s = testing::row_of_blocks_on_a_base(ElementKind::vem);
   ASSERT_EQ(s.model.n_elements(), 5);
   std::size_t largest_block = 0;
   for (int e = 0; e < s.model.n_elements(); ++e)
     largest_block = std::max(largest_block, s.model.element_dofs(e).size());
-  auto contact = testing::contact_for(s.model, 40.0 * rock.young, {30.0 * pi / 180.0, 0.0, 0.0});
+  auto contact = testing::contact_for(s.model, 40.0 * s.model.materials[0].young,
+                                      {30.0 * pi / 180.0, 0.0, 0.0});
   contact->begin_step(s.model, 1e-3);
   ASSERT_GT(contact->n_points(), 0);
   std::size_t most = 0;

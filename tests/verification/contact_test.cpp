@@ -380,21 +380,10 @@ TEST(Stack, FacesTouchingWithoutForceKeepTheirModeAndSprings) {
   // gaps of 1e-16 m: a 1,003-block rock mass dropped from rest took 25 refactorisations a
   // step and 3 cuts in 10 steps where it now takes 1.4 and none. Tolerance: none, the counts are
   // exact.
-  const ElasticMaterial rock = elastic(1e10, 0.0, 2500.0, PlaneCondition::strain);
-  const Point2 o(1000.0, -500.0);
-  std::vector<MaterialRegion> regions{
-      testing::rectangle("base", o.x() - 1.0, o.y() - 1.0, o.x() + 5.0, o.y()),
-      testing::rectangle("rock", o.x(), o.y(), o.x() + 4.0, o.y() + 1.0)};
-  std::vector<NamedCurve> curves;
-  std::vector<int> joints;
-  for (int k = 1; k < 4; ++k) {
-    curves.push_back(line("v" + std::to_string(k), o + Point2(k, 0), o + Point2(k, 1)));
-    joints.push_back(static_cast<int>(curves.size()) - 1);
-  }
-  testing::Setup s = testing::make_setup(regions, curves, joints, nullptr, 0.5, rock, 0,
-                                         {ElementKind::dda, ElementKind::dda});
+  testing::Setup s = testing::row_of_blocks_on_a_base(ElementKind::dda);
   ASSERT_EQ(s.model.n_elements(), 5);
-  auto contact = contact_for(s.model, 40.0 * rock.young, {30.0 * pi / 180.0, 0.0, 0.0});
+  auto contact =
+      contact_for(s.model, 40.0 * s.model.materials[0].young, {30.0 * pi / 180.0, 0.0, 0.0});
   contact->begin_step(s.model, 1e-3);
   int closed = 0;
   for (const ContactPoint& p : contact->points())

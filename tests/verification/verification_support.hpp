@@ -134,6 +134,25 @@ inline Setup make_setup(std::vector<MaterialRegion> regions,
                     std::vector<ElasticMaterial>(n, material), order, kinds);
 }
 
+/// A row of four 1 m blocks cut from one rock (4 m x 1 m) by three joints, on a base 6 m x 1 m
+/// under it, far from the origin (corner at (1000, -500)); both regions of @p kind, E =
+/// 1e10 Pa, nu = 0, rho = 2500, plane strain, cover size 0.5 m. Every face touches its
+/// neighbour at a zero gap.
+inline Setup row_of_blocks_on_a_base(ElementKind kind) {
+  const Point2 o(1000.0, -500.0);
+  std::vector<MaterialRegion> regions{
+      rectangle("base", o.x() - 1.0, o.y() - 1.0, o.x() + 5.0, o.y()),
+      rectangle("rock", o.x(), o.y(), o.x() + 4.0, o.y() + 1.0)};
+  std::vector<NamedCurve> curves;
+  std::vector<int> joints;
+  for (int k = 1; k < 4; ++k) {
+    curves.push_back(line("v" + std::to_string(k), o + Point2(k, 0), o + Point2(k, 1)));
+    joints.push_back(static_cast<int>(curves.size()) - 1);
+  }
+  return make_setup(regions, curves, joints, nullptr, 0.5,
+                    elastic(1e10, 0.0, 2500.0, PlaneCondition::strain), 0, {kind, kind});
+}
+
 /// A contact system with one strength for every boundary edge; joint faces are bonded when
 /// @p bonded (an intact joint holds until its strength is exceeded).
 inline std::unique_ptr<ContactSystem> contact_for(const Model& model,
