@@ -530,13 +530,13 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   // edge's two vertices), then the master's that the slave does not have. They depend on
   // the point's edges only, not on where it sits along them: the step's sparsity pattern
   // and plans are made with them at its start (point_dofs()). Where each of the elements'
-  // unknowns sits is found once (-1: not used yet).
+  // unknowns sits is found once: local[c] for the slave's column c, local[slave size + c]
+  // for the master's (-1: not used yet).
   const std::size_t bound = slave_dofs.size() + master_dofs.size();
   k.dofs.reserve(bound);
   k.hn = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(bound));
   k.hs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(bound));
-  std::vector<Eigen::Index> slave_local(slave_dofs.size(), -1);
-  std::vector<Eigen::Index> master_local(master_dofs.size(), -1);
+  std::vector<Eigen::Index> local(bound, -1);
   PointInterpolation t;
   std::vector<int> columns;
   const Point2& slave_a = boundary_.position[at(slave_edge)];
@@ -550,20 +550,21 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
       master_shape.interpolation_on_edge(x, a, b, t, columns);
     else
       slave_shape.interpolation_on_edge(x, slave_a, slave_b, t, columns);
-    std::vector<Eigen::Index>& local = on_master ? master_local : slave_local;
+    const std::span<const int> dofs = on_master ? master_dofs : slave_dofs;
+    const std::size_t offset = on_master ? slave_dofs.size() : 0;
     Eigen::VectorXd& h = shear ? k.hs : k.hn;
     for (std::size_t j = 0; j < columns.size(); ++j) {
       const std::size_t column = at(columns[j]);
-      NMM_ASSERT(column < local.size(), "an element's interpolation has a column per unknown");
-      if (local[column] < 0) { // an unknown the other element may have used already
-        const int dof = on_master ? master_dofs[column] : slave_dofs[column];
-        const auto found = std::find(k.dofs.begin(), k.dofs.end(), dof);
-        local[column] = found - k.dofs.begin();
+      NMM_ASSERT(column < dofs.size(), "an element's interpolation has a column per unknown");
+      Eigen::Index& position = local[offset + column];
+      if (position < 0) { // an unknown the other element may have used already
+        const auto found = std::find(k.dofs.begin(), k.dofs.end(), dofs[column]);
+        position = found - k.dofs.begin();
         if (found == k.dofs.end())
-          k.dofs.push_back(dof);
+          k.dofs.push_back(dofs[column]);
       }
       const auto col = static_cast<Eigen::Index>(j);
-      h(local[column]) += t(0, col) * c.x() + t(1, col) * c.y();
+      h(position) += t(0, col) * c.x() + t(1, col) * c.y();
     }
   };
   const double l = (b - a).norm();

@@ -207,12 +207,6 @@ void Assembler::drop_data_from(const Plan& plan) {
   repeats_.resize(plan.repeat_begin);
 }
 
-void Assembler::clear_plans() {
-  plans_.clear();
-  kept_local_.clear();
-  kept_dofs_.clear();
-  positions_.clear();
-  repeats_.clear();
-}
+void Assembler::clear_plans() { truncate_plans(0); }
 
 } // namespace nmm
