@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <set>
+#include <span>
 #include <sstream>
 
 namespace nmm {
@@ -43,7 +44,7 @@ struct Part {
 /// at the ends (order-0 covers), or quadratic through the ends and the middle (order 1).
 class GapProfile {
 public:
-  GapProfile(double lo, double hi, const std::vector<double>& g) : lo_(lo), hi_(hi), c_(g.front()) {
+  GapProfile(double lo, double hi, std::span<const double> g) : lo_(lo), hi_(hi), c_(g.front()) {
     b_ = g.back() - g.front();
     if (g.size() == 3) {
       b_ = 4.0 * g[1] - 3.0 * g[0] - g[2];
@@ -59,23 +60,28 @@ public:
   /// The part where the gap is negative (for a quadratic, the hull of its negative parts).
   /// Parts shorter than 1e-6 of the overlap count as none.
   [[nodiscard]] Part negative() const {
-    std::vector<double> cuts{0.0, 1.0};
+    // The ends and the roots in [0, 1], sorted.
+    std::array<double, 4> cuts{0.0, 1.0};
+    std::size_t n = 2;
+    auto cut = [&](double s) {
+      if (s >= 0.0 && s <= 1.0)
+        cuts[n++] = s;
+    };
     if (std::abs(a_) > 1e-14 * (std::abs(b_) + std::abs(c_))) {
       const double disc = b_ * b_ - 4.0 * a_ * c_;
       if (disc > 0.0) {
         const double q = -0.5 * (b_ + std::copysign(std::sqrt(disc), b_)); // stable roots
-        cuts.push_back(q / a_);
+        cut(q / a_);
         if (q != 0.0)
-          cuts.push_back(c_ / q);
+          cut(c_ / q);
       }
     } else if (b_ != 0.0) {
-      cuts.push_back(-c_ / b_);
+      cut(-c_ / b_);
     }
-    std::erase_if(cuts, [](double s) { return !(s >= 0.0 && s <= 1.0); });
-    std::sort(cuts.begin(), cuts.end());
+    std::sort(cuts.begin(), cuts.begin() + static_cast<std::ptrdiff_t>(n));
     double first = 2.0;
     double last = -1.0;
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    for (std::size_t k = 0; k + 1 < n; ++k) {
       const double mid = 0.5 * (cuts[k] + cuts[k + 1]);
       if (cuts[k + 1] > cuts[k] && (a_ * mid + b_) * mid + c_ < 0.0) {
         first = std::min(first, cuts[k]);
@@ -471,7 +477,9 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   start_.points = points_;
   start_.broken = broken_;
   start_.bonds_broken = counters_.bonds_broken;
-  kinematics_cache_.assign(points_.size() + 3 * groups_.size(), CachedKinematics{});
+  kinematics_cache_.resize(points_.size() + 3 * groups_.size());
+  for (CachedKinematics& c : kinematics_cache_)
+    c.valid = false;
   shapes_.clear();
   shape_of_element_.assign(static_cast<std::size_t>(model.n_elements()), -1);
   for (const ContactPoint& p : points_) {
@@ -513,14 +521,12 @@ void ContactSystem::set_hold_shear(bool hold) {
   }
 }
 
-ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
-                                                    const ContactPoint& p) const {
+void ContactSystem::kinematics(const Model& model, const ContactPoint& p, Kinematics& k) const {
   const int slave_edge = p.slave_edge;
   const int master = p.master;
   const Point2& slave = p.slave;
   const int slave_element = edge_element_[at(slave_edge)];
   const int master_element = edge_element_[at(master)];
-  Kinematics k;
   const std::span<const int> slave_dofs = model.element_dofs(slave_element);
   const std::span<const int> master_dofs = model.element_dofs(master_element);
   const ElementShape& slave_shape = shape(slave_element);
@@ -533,12 +539,15 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   // unknowns sits is found once: local[c] for the slave's column c, local[slave size + c]
   // for the master's (-1: not used yet).
   const std::size_t bound = slave_dofs.size() + master_dofs.size();
-  k.dofs.reserve(bound);
-  k.hn = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(bound));
-  k.hs = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(bound));
-  std::vector<Eigen::Index> local(bound, -1);
-  PointInterpolation t;
-  std::vector<int> columns;
+  k.dofs.clear();
+  std::vector<double>& hn = work_.hn;
+  std::vector<double>& hs = work_.hs;
+  hn.assign(bound, 0.0);
+  hs.assign(bound, 0.0);
+  std::vector<Eigen::Index>& local = work_.local;
+  local.assign(bound, -1);
+  PointInterpolation& t = work_.t;
+  std::vector<int>& columns = work_.columns;
   const Point2& slave_a = boundary_.position[at(slave_edge)];
   const Point2& slave_b = boundary_.position[at(boundary_.next[at(slave_edge)])];
   const Point2& a = boundary_.position[at(master)];
@@ -552,7 +561,7 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
       slave_shape.interpolation_on_edge(x, slave_a, slave_b, t, columns);
     const std::span<const int> dofs = on_master ? master_dofs : slave_dofs;
     const std::size_t offset = on_master ? slave_dofs.size() : 0;
-    Eigen::VectorXd& h = shear ? k.hs : k.hn;
+    std::vector<double>& h = shear ? hs : hn;
     for (std::size_t j = 0; j < columns.size(); ++j) {
       const std::size_t column = at(columns[j]);
       NMM_ASSERT(column < dofs.size(), "an element's interpolation has a column per unknown");
@@ -564,7 +573,7 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
           k.dofs.push_back(dofs[column]);
       }
       const auto col = static_cast<Eigen::Index>(j);
-      h(position) += t(0, col) * c.x() + t(1, col) * c.y();
+      h[static_cast<std::size_t>(position)] += t(0, col) * c.x() + t(1, col) * c.y();
     }
   };
   const double l = (b - a).norm();
@@ -592,11 +601,11 @@ ContactSystem::Kinematics ContactSystem::kinematics(const Model& model,
   k.s0 = (slave - anchor).dot(tangent);
   add(true, false, slave, tangent);
   add(true, true, anchor, Point2(-tangent));
-  if (k.dofs.size() < bound) { // a VEM block's edge, or unknowns the elements share
-    k.hn.conservativeResize(static_cast<Eigen::Index>(k.dofs.size()));
-    k.hs.conservativeResize(static_cast<Eigen::Index>(k.dofs.size()));
-  }
-  return k;
+  // Cut to the unknowns used (fewer than bound on a VEM block's edge, or where the elements
+  // share unknowns).
+  const auto n = static_cast<Eigen::Index>(k.dofs.size());
+  k.hn = Eigen::Map<const Eigen::VectorXd>(hn.data(), n);
+  k.hs = Eigen::Map<const Eigen::VectorXd>(hs.data(), n);
 }
 
 const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& model,
@@ -606,7 +615,7 @@ const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& m
   CachedKinematics& c = kinematics_cache_[slot];
   if (!c.valid || c.slave_edge != p.slave_edge || c.master != p.master || c.slave != p.slave ||
       c.anchor != p.anchor || c.offset != p.offset) {
-    c.kinematics = kinematics(model, p);
+    kinematics(model, p, c.kinematics);
     c.valid = true;
     c.slave_edge = p.slave_edge;
     c.master = p.master;
@@ -629,8 +638,14 @@ double ContactSystem::gap_at(
 }
 
 std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
-  const ContactPoint& p = points_[at(i)];
-  return cached_kinematics(model, p, at(i)).dofs;
+  std::vector<int> dofs;
+  append_point_dofs(model, i, dofs);
+  return dofs;
+}
+
+void ContactSystem::append_point_dofs(const Model& model, int i, std::vector<int>& out) const {
+  const std::vector<int>& dofs = cached_kinematics(model, points_[at(i)], at(i)).dofs;
+  out.insert(out.end(), dofs.begin(), dofs.end());
 }
 
 bool ContactSystem::contribution(const Model& model,
@@ -650,12 +665,12 @@ bool ContactSystem::contribution(const Model& model,
   const Eigen::VectorXd& hs = k.hs;
   // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
   if (stiffness != nullptr)
-    *stiffness += p.stiffness * hn * hn.transpose();
+    stiffness->noalias() += p.stiffness * hn * hn.transpose();
   load -= p.stiffness * k.g0 * hn;
   if (p.mode == ContactMode::lock) {
     // Shear spring (eq. 3.25-3.26) anchored at P0.
     if (stiffness != nullptr)
-      *stiffness += p.stiffness * hs * hs.transpose();
+      stiffness->noalias() += p.stiffness * hs * hs.transpose();
     load -= p.stiffness * k.s0 * hs;
   } else if (const double friction = friction_force(p); friction != 0.0) {
     // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
@@ -752,10 +767,12 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         bearing += points_[at(g.first + q)].stiffness * std::max(0.0, -measure[at(q)].gap);
     }
     if (g.edge) {
-      std::vector<double> samples{gap_at(model, g, 0, g.lo, raw)};
+      std::array<double, 3> gaps{gap_at(model, g, 0, g.lo, raw)};
+      std::size_t n = 1;
       if (gauss_ == 3)
-        samples.push_back(gap_at(model, g, 1, 0.5 * (g.lo + g.hi), raw));
-      samples.push_back(gap_at(model, g, 2, g.hi, raw));
+        gaps[n++] = gap_at(model, g, 1, 0.5 * (g.lo + g.hi), raw);
+      gaps[n++] = gap_at(model, g, 2, g.hi, raw);
+      const std::span<const double> samples(gaps.data(), n);
       const GapProfile profile(g.lo, g.hi, samples);
       pressed = profile.negative();
       deepest = -*std::min_element(samples.begin(), samples.end());

@@ -147,6 +147,8 @@ public:
   /// Raw unknowns coupled by point i (slave and master elements, without repeats); the same
   /// for the whole step.
   [[nodiscard]] std::vector<int> point_dofs(const Model& model, int i) const;
+  /// point_dofs(i) appended to @p out (no allocation of its own).
+  void append_point_dofs(const Model& model, int i, std::vector<int>& out) const;
 
   /// Springs and friction loads of point i in its current mode, on point_dofs(i); the loads
   /// only when @p stiffness is null (an iteration that keeps the factor: friction changed).
@@ -277,7 +279,9 @@ private:
     std::vector<std::pair<double, double>> anchors;
   };
 
-  [[nodiscard]] Kinematics kinematics(const Model& model, const ContactPoint& p) const;
+  /// The kinematics of @p p into @p k (its storage reused: a slot's are computed many times
+  /// a step).
+  void kinematics(const Model& model, const ContactPoint& p, Kinematics& k) const;
   /// kinematics(model, p) through slot @p slot of the cache (slots: the points, then three
   /// gap samples per group); the same numbers, computed again only when p's slave point,
   /// edges, anchor or offset differ from the slot's.
@@ -310,8 +314,19 @@ private:
   int gauss_ = 2;
   std::vector<Group> groups_;
   std::vector<ContactPoint> points_;
-  /// cached_kinematics() slots, emptied by begin_step() (the geometry moved).
+  /// cached_kinematics() slots, made invalid by begin_step() (the geometry moved; their
+  /// storage is kept for the next step's).
   mutable std::vector<CachedKinematics> kinematics_cache_;
+  /// Workspaces of kinematics(): where each unknown sits, the columns and the interpolation
+  /// of one point, the terms before they are cut to the unknowns used.
+  struct KinematicsWork {
+    std::vector<Eigen::Index> local;
+    std::vector<int> columns;
+    PointInterpolation t;
+    std::vector<double> hn;
+    std::vector<double> hs;
+  };
+  mutable KinematicsWork work_;
   /// Closed contacts of the last step, by key.
   std::unordered_map<std::uint64_t, Carried> carried_;
   /// Broken bonds, by contact key (a broken joint never heals).

@@ -393,14 +393,21 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     }
     // Every contact found at the start of the step is in the pattern (DESIGN.md): the
     // symbolic analysis runs once per step, open-close iterations only refactorise.
-    std::vector<std::vector<int>> contact_dofs;
+    // The raw unknowns of contact point i: contact_dofs[contact_start[i]...contact_start[i + 1]).
+    std::vector<int> contact_dofs;
+    std::vector<int> contact_start{0};
     std::vector<int> contact_transform;
+    auto contact_point_dofs = [&](int i) {
+      return std::span<const int>(contact_dofs.data() + contact_start[at(i)],
+                                  at(contact_start[at(i + 1)] - contact_start[at(i)]));
+    };
     if (impl_->contact) {
       for (int i = 0; i < impl_->contact->n_points(); ++i) {
-        contact_dofs.push_back(impl_->contact->point_dofs(model_, i));
+        impl_->contact->append_point_dofs(model_, i, contact_dofs);
+        contact_start.push_back(static_cast<int>(contact_dofs.size()));
         Reduction r;
         contact_transform.push_back(-1);
-        if (!reduce(map, contact_dofs.back(), flat, r)) {
+        if (!reduce(map, contact_point_dofs(i), flat, r)) {
           contact_transform.back() = static_cast<int>(transforms.size());
           transforms.push_back(std::move(r));
         }
@@ -559,7 +566,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
             continue; // no spring, no load
           if (impl_->contact->contribution(model_, i, assemble ? &spring : nullptr, load))
             ++counters_.friction_terms;
-          const std::vector<int>& dofs = contact_dofs[at(i)];
+          const std::span<const int> dofs = contact_point_dofs(i);
           NMM_ASSERT(static_cast<std::size_t>(load.size()) == dofs.size(),
                      "a contact point's unknowns stay those of the step's start");
           for (std::size_t j = 0; j < dofs.size(); ++j)
