@@ -4,11 +4,15 @@
 #include "mesh/error.hpp"
 #include "solver/threads.hpp"
 
+#include <Eigen/Core>
 #include <cholmod.h>
 
-#include <cstring>
+#include <algorithm>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
 
 namespace nmm {
 
@@ -32,6 +36,15 @@ struct CholmodSolver::Impl {
   cholmod_dense* work_e = nullptr;
   long n = -1;
   long failed_column = -1;
+  /// The matrix as factorised: the lower triangle of P A P^T (P the fill-reducing ordering
+  /// of analyze()), in compressed columns, with for each of its entries the index of the
+  /// same entry among the upper triangle's values of A (see analyze()).
+  std::vector<int> permutation; ///< P: row k of P A P^T is row permutation[k] of A
+  std::vector<int> lower_start;
+  std::vector<int> lower_row;
+  std::vector<double> lower_value;
+  std::vector<int> source;
+  Eigen::VectorXd permuted; ///< P b of a solve
   double flops = 0.0;
   double single_thread_flops = default_single_thread_flops;
   SolverCounters counters;
@@ -79,40 +92,133 @@ struct CholmodSolver::Impl {
     a.packed = 1;
     return a;
   }
+
+  // A non-owning CHOLMOD view of the permuted lower triangle: stype = -1.
+  cholmod_sparse lower_view() {
+    cholmod_sparse a{};
+    a.nrow = permutation.size();
+    a.ncol = permutation.size();
+    a.nzmax = lower_row.size();
+    a.p = lower_start.data();
+    a.i = lower_row.data();
+    a.x = lower_value.data();
+    a.stype = -1;
+    a.itype = CHOLMOD_INT;
+    a.xtype = CHOLMOD_REAL;
+    a.dtype = CHOLMOD_DOUBLE;
+    a.sorted = 1;
+    a.packed = 1;
+    return a;
+  }
 };
 
 CholmodSolver::CholmodSolver() : impl_(std::make_unique<Impl>()) {}
 CholmodSolver::~CholmodSolver() = default;
 
+// The numeric factorisation wants the lower triangle of the permuted matrix, P A P^T: given A
+// and the ordering, CHOLMOD forms it by a permuted transpose at every factorisation (5 % of the
+// 70-block wall's steps, with its allocations). The pattern stays from one analysis to the
+// next, so analyze() builds that permuted lower triangle once, with where each of its entries
+// comes from, and has CHOLMOD analyse it in its natural order without a postorder (the
+// ordering, postorder included, is in P already): the same elimination tree, supernodes and
+// arithmetic, so the same factor to the last bit. A factorisation then only gathers the
+// values, and a solve permutes the right-hand side and the solution (as CHOLMOD would).
 SolveStatus CholmodSolver::analyze(const SparseMatrix& matrix) {
   NMM_ASSERT(matrix.rows() == matrix.cols(), "CHOLMOD needs a square matrix");
   NMM_ASSERT(matrix.isCompressed(), "CHOLMOD needs a compressed matrix");
-  cholmod_free_factor(&impl_->factor, &impl_->common);
+  Impl& m = *impl_;
+  cholmod_free_factor(&m.factor, &m.common);
+  m.n = -1;
+  // The fill-reducing ordering (with its postorder) of A's pattern.
   cholmod_sparse a = Impl::view(matrix);
-  impl_->factor = cholmod_analyze(&a, &impl_->common);
-  if (impl_->factor == nullptr || impl_->common.status < CHOLMOD_OK)
+  cholmod_factor* ordering = cholmod_analyze(&a, &m.common);
+  if (ordering == nullptr || m.common.status < CHOLMOD_OK) {
+    cholmod_free_factor(&ordering, &m.common);
     return SolveStatus::failed;
-  impl_->n = matrix.rows();
-  impl_->flops = impl_->common.fl;
-  ++impl_->counters.symbolic_analyses;
+  }
+  const auto n = static_cast<std::size_t>(matrix.rows());
+  const auto* perm = static_cast<const int*>(ordering->Perm);
+  m.permutation.assign(perm, perm + n);
+  cholmod_free_factor(&ordering, &m.common);
+  std::vector<int> inverse(n);
+  for (std::size_t k = 0; k < n; ++k)
+    inverse[static_cast<std::size_t>(m.permutation[k])] = static_cast<int>(k);
+  // The lower triangle of P A P^T from A's upper triangle: entry (i, j), i <= j, goes to
+  // row max(P'i, P'j) of column min(P'i, P'j) (P' the inverse); columns counted, then filled,
+  // then each column's rows sorted.
+  const int* outer = matrix.outerIndexPtr();
+  const int* inner = matrix.innerIndexPtr();
+  m.lower_start.assign(n + 1, 0);
+  for (std::size_t j = 0; j < n; ++j)
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int pi = inverse[static_cast<std::size_t>(inner[k])];
+      const int pj = inverse[j];
+      ++m.lower_start[static_cast<std::size_t>(std::min(pi, pj)) + 1];
+    }
+  for (std::size_t j = 0; j < n; ++j)
+    m.lower_start[j + 1] += m.lower_start[j];
+  const auto nonzeros = static_cast<std::size_t>(m.lower_start[n]);
+  m.lower_row.resize(nonzeros);
+  m.source.resize(nonzeros);
+  m.lower_value.assign(nonzeros, 0.0);
+  std::vector<int> next(m.lower_start.begin(), m.lower_start.end() - 1);
+  for (std::size_t j = 0; j < n; ++j)
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int pi = inverse[static_cast<std::size_t>(inner[k])];
+      const int pj = inverse[j];
+      const auto slot =
+          static_cast<std::size_t>(next[static_cast<std::size_t>(std::min(pi, pj))]++);
+      m.lower_row[slot] = std::max(pi, pj);
+      m.source[slot] = k;
+    }
+  std::vector<std::pair<int, int>> column;
+  for (std::size_t j = 0; j < n; ++j) {
+    const auto first = static_cast<std::size_t>(m.lower_start[j]);
+    const auto last = static_cast<std::size_t>(m.lower_start[j + 1]);
+    column.clear();
+    for (std::size_t k = first; k < last; ++k)
+      column.emplace_back(m.lower_row[k], m.source[k]);
+    std::sort(column.begin(), column.end());
+    for (std::size_t k = first; k < last; ++k)
+      std::tie(m.lower_row[k], m.source[k]) = column[k - first];
+  }
+  // Its analysis in the natural order, without a postorder.
+  cholmod_sparse lower = m.lower_view();
+  const int methods = m.common.nmethods;
+  const int method = m.common.method[0].ordering;
+  const int postorder = m.common.postorder;
+  m.common.nmethods = 1;
+  m.common.method[0].ordering = CHOLMOD_NATURAL;
+  m.common.postorder = 0;
+  m.factor = cholmod_analyze(&lower, &m.common);
+  m.common.nmethods = methods;
+  m.common.method[0].ordering = method;
+  m.common.postorder = postorder;
+  if (m.factor == nullptr || m.common.status < CHOLMOD_OK)
+    return SolveStatus::failed;
+  m.n = matrix.rows();
+  m.flops = m.common.fl;
+  ++m.counters.symbolic_analyses;
   return SolveStatus::ok;
 }
 
 SolveStatus CholmodSolver::factorize(const SparseMatrix& matrix) {
-  if (impl_->factor == nullptr || matrix.rows() != impl_->n)
+  Impl& m = *impl_;
+  if (m.factor == nullptr || matrix.rows() != m.n ||
+      static_cast<std::size_t>(matrix.nonZeros()) != m.source.size())
     return SolveStatus::failed;
-  cholmod_sparse a = Impl::view(matrix);
-  const auto single = impl_->single_thread_if_small();
-  const int ok = cholmod_factorize(&a, impl_->factor, &impl_->common);
-  impl_->failed_column = -1;
-  if (impl_->common.status == CHOLMOD_NOT_POSDEF ||
-      (ok != 0 && impl_->factor->minor < impl_->factor->n)) {
+  const double* values = matrix.valuePtr();
+  for (std::size_t k = 0; k < m.source.size(); ++k)
+    m.lower_value[k] = values[m.source[k]];
+  cholmod_sparse lower = m.lower_view();
+  const auto single = m.single_thread_if_small();
+  const int ok = cholmod_factorize(&lower, m.factor, &m.common);
+  m.failed_column = -1;
+  if (m.common.status == CHOLMOD_NOT_POSDEF || (ok != 0 && m.factor->minor < m.factor->n)) {
     // minor counts columns of the permuted matrix: map it back to the matrix's own column.
-    const auto minor = static_cast<std::size_t>(impl_->factor->minor);
-    const auto* permutation = static_cast<const int*>(impl_->factor->Perm);
-    impl_->failed_column = permutation != nullptr && minor < impl_->factor->n
-                               ? permutation[minor]
-                               : static_cast<long>(minor);
+    const auto minor = static_cast<std::size_t>(m.factor->minor);
+    m.failed_column =
+        minor < m.permutation.size() ? m.permutation[minor] : static_cast<long>(minor);
     return SolveStatus::not_positive_definite;
   }
   if (ok == 0 || impl_->common.status < CHOLMOD_OK)
@@ -125,12 +231,17 @@ SolveStatus CholmodSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& so
   if (impl_->factor == nullptr || rhs.size() != impl_->n || impl_->failed_column >= 0) {
     return SolveStatus::failed;
   }
+  Impl& m = *impl_;
+  const std::size_t n = m.permutation.size();
+  m.permuted.resize(rhs.size());
+  for (std::size_t k = 0; k < n; ++k)
+    m.permuted(static_cast<Eigen::Index>(k)) = rhs(m.permutation[k]);
   cholmod_dense b{};
   b.nrow = static_cast<std::size_t>(rhs.size());
   b.ncol = 1;
   b.nzmax = b.nrow;
   b.d = b.nrow;
-  b.x = const_cast<double*>(rhs.data()); // NOLINT(cppcoreguidelines-pro-type-const-cast)
+  b.x = m.permuted.data();
   b.xtype = CHOLMOD_REAL;
   b.dtype = CHOLMOD_DOUBLE;
   // The triangular solves of a factor that was made on one thread run on one thread too:
@@ -144,8 +255,9 @@ SolveStatus CholmodSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& so
   if (ok == 0 || impl_->solution == nullptr)
     return SolveStatus::failed;
   solution.resize(rhs.size());
-  std::memcpy(solution.data(), impl_->solution->x,
-              static_cast<std::size_t>(rhs.size()) * sizeof(double));
+  const auto* x = static_cast<const double*>(m.solution->x);
+  for (std::size_t k = 0; k < n; ++k)
+    solution(m.permutation[k]) = x[k];
   ++impl_->counters.solves;
   return SolveStatus::ok;
 }
