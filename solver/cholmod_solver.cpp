@@ -129,9 +129,12 @@ SolveStatus CholmodSolver::analyze(const SparseMatrix& matrix) {
   Impl& m = *impl_;
   cholmod_free_factor(&m.factor, &m.common);
   m.n = -1;
-  // The fill-reducing ordering (with its postorder) of A's pattern.
+  // The fill-reducing ordering (with its postorder) of A's pattern: a simplicial analysis,
+  // which orders and postorders as the supernodal one does, without its supernodes.
   cholmod_sparse a = Impl::view(matrix);
+  m.common.supernodal = CHOLMOD_SIMPLICIAL;
   cholmod_factor* ordering = cholmod_analyze(&a, &m.common);
+  m.common.supernodal = CHOLMOD_SUPERNODAL;
   if (ordering == nullptr || m.common.status < CHOLMOD_OK) {
     cholmod_free_factor(&ordering, &m.common);
     return SolveStatus::failed;
