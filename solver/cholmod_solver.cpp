@@ -74,17 +74,23 @@ struct CholmodSolver::Impl {
   Impl(Impl&&) = delete;
   Impl& operator=(Impl&&) = delete;
 
-  // A non-owning CHOLMOD view of an Eigen matrix: stype = 1, only the upper triangle read.
-  static cholmod_sparse view(const SparseMatrix& matrix) {
+  // A non-owning CHOLMOD view of compressed columns of an n x n symmetric matrix, of which
+  // only the upper (stype 1) or lower (stype -1) triangle is read. CHOLMOD's C interface takes
+  // non-const pointers but does not write through them here.
+  static cholmod_sparse view(std::size_t n,
+                             std::size_t nonzeros,
+                             const int* start,
+                             const int* row,
+                             const double* value,
+                             int stype) {
     cholmod_sparse a{};
-    a.nrow = static_cast<std::size_t>(matrix.rows());
-    a.ncol = static_cast<std::size_t>(matrix.cols());
-    a.nzmax = static_cast<std::size_t>(matrix.nonZeros());
-    // CHOLMOD's C interface takes non-const pointers but does not write through them here.
-    a.p = const_cast<int*>(matrix.outerIndexPtr()); // NOLINT(cppcoreguidelines-pro-type-const-cast)
-    a.i = const_cast<int*>(matrix.innerIndexPtr()); // NOLINT(cppcoreguidelines-pro-type-const-cast)
-    a.x = const_cast<double*>(matrix.valuePtr());   // NOLINT(cppcoreguidelines-pro-type-const-cast)
-    a.stype = 1;
+    a.nrow = n;
+    a.ncol = n;
+    a.nzmax = nonzeros;
+    a.p = const_cast<int*>(start);    // NOLINT(cppcoreguidelines-pro-type-const-cast)
+    a.i = const_cast<int*>(row);      // NOLINT(cppcoreguidelines-pro-type-const-cast)
+    a.x = const_cast<double*>(value); // NOLINT(cppcoreguidelines-pro-type-const-cast)
+    a.stype = stype;
     a.itype = CHOLMOD_INT;
     a.xtype = CHOLMOD_REAL;
     a.dtype = CHOLMOD_DOUBLE;
@@ -92,23 +98,16 @@ struct CholmodSolver::Impl {
     a.packed = 1;
     return a;
   }
-
-  // A non-owning CHOLMOD view of the permuted lower triangle: stype = -1.
-  cholmod_sparse lower_view() {
-    cholmod_sparse a{};
-    a.nrow = permutation.size();
-    a.ncol = permutation.size();
-    a.nzmax = lower_row.size();
-    a.p = lower_start.data();
-    a.i = lower_row.data();
-    a.x = lower_value.data();
-    a.stype = -1;
-    a.itype = CHOLMOD_INT;
-    a.xtype = CHOLMOD_REAL;
-    a.dtype = CHOLMOD_DOUBLE;
-    a.sorted = 1;
-    a.packed = 1;
-    return a;
+  // An Eigen matrix's upper triangle.
+  static cholmod_sparse view(const SparseMatrix& matrix) {
+    return view(static_cast<std::size_t>(matrix.rows()),
+                static_cast<std::size_t>(matrix.nonZeros()), matrix.outerIndexPtr(),
+                matrix.innerIndexPtr(), matrix.valuePtr(), 1);
+  }
+  // The permuted lower triangle.
+  [[nodiscard]] cholmod_sparse lower_view() const {
+    return view(permutation.size(), lower_row.size(), lower_start.data(), lower_row.data(),
+                lower_value.data(), -1);
   }
 };
 
