@@ -35,6 +35,7 @@ struct CholmodSolver::Impl {
   cholmod_dense* work_y = nullptr;
   cholmod_dense* work_e = nullptr;
   long n = -1;
+  long nonzeros = -1; ///< of the matrix analysed: a factorised one has its pattern
   long failed_column = -1;
   /// The matrix as factorised: the lower triangle of P A P^T (P the fill-reducing ordering
   /// of analyze()), in compressed columns, with for each of its entries the index of the
@@ -151,8 +152,11 @@ SolveStatus CholmodSolver::analyze(const SparseMatrix& matrix) {
   const int* outer = matrix.outerIndexPtr();
   const int* inner = matrix.innerIndexPtr();
   m.lower_start.assign(n + 1, 0);
+  auto upper = [&](std::size_t j, int k) { return static_cast<std::size_t>(inner[k]) <= j; };
   for (std::size_t j = 0; j < n; ++j)
     for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      if (!upper(j, k))
+        continue; // (a lower entry: not read, as CHOLMOD reads only the upper triangle)
       const int pi = inverse[static_cast<std::size_t>(inner[k])];
       const int pj = inverse[j];
       ++m.lower_start[static_cast<std::size_t>(std::min(pi, pj)) + 1];
@@ -166,6 +170,8 @@ SolveStatus CholmodSolver::analyze(const SparseMatrix& matrix) {
   std::vector<int> next(m.lower_start.begin(), m.lower_start.end() - 1);
   for (std::size_t j = 0; j < n; ++j)
     for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      if (!upper(j, k))
+        continue;
       const int pi = inverse[static_cast<std::size_t>(inner[k])];
       const int pj = inverse[j];
       const auto slot =
@@ -199,6 +205,7 @@ SolveStatus CholmodSolver::analyze(const SparseMatrix& matrix) {
   if (m.factor == nullptr || m.common.status < CHOLMOD_OK)
     return SolveStatus::failed;
   m.n = matrix.rows();
+  m.nonzeros = matrix.nonZeros();
   m.flops = m.common.fl;
   ++m.counters.symbolic_analyses;
   return SolveStatus::ok;
@@ -206,8 +213,7 @@ SolveStatus CholmodSolver::analyze(const SparseMatrix& matrix) {
 
 SolveStatus CholmodSolver::factorize(const SparseMatrix& matrix) {
   Impl& m = *impl_;
-  if (m.factor == nullptr || matrix.rows() != m.n ||
-      static_cast<std::size_t>(matrix.nonZeros()) != m.source.size())
+  if (m.factor == nullptr || matrix.rows() != m.n || matrix.nonZeros() != m.nonzeros)
     return SolveStatus::failed;
   const double* values = matrix.valuePtr();
   for (std::size_t k = 0; k < m.source.size(); ++k)
