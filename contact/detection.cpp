@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <unordered_set>
 #include <utility>
@@ -14,7 +15,7 @@ namespace nmm {
 
 namespace {
 
-constexpr double two_pi = 2.0 * 3.14159265358979323846;
+constexpr double two_pi = 2.0 * std::numbers::pi;
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
@@ -93,8 +94,7 @@ public:
     flat_.resize(at(n));
     for (int v = 0; v < n; ++v) {
       angle_[at(v)] = b_.angle(v);
-      flat_[at(v)] =
-          std::abs(angle_[at(v)] - 3.14159265358979323846) < options_.angle_overlap ? 1 : 0;
+      flat_[at(v)] = std::abs(angle_[at(v)] - std::numbers::pi) < options_.angle_overlap ? 1 : 0;
     }
   }
 
@@ -425,7 +425,7 @@ private:
     if (arc_overlap(sa, a.extent, sc, c.extent) >= options_.angle_overlap)
       return;
     ++vertex_vertex_;
-    const double straight = 3.14159265358979323846 + 1e-12;
+    const double straight = std::numbers::pi + 1e-12;
     auto against = [&](int vertex, int edge) {
       ContactCandidate candidate;
       candidate.slave = vertex;

@@ -62,6 +62,32 @@ TEST(CholmodSolver, ReadsOnlyTheUpperTriangle) {
   EXPECT_LT((full * x - rhs).norm(), 1e-13 * rhs.norm());
 }
 
+TEST(CholmodSolver, IgnoresWhatALowerTriangleHolds) {
+  // The solver gives CHOLMOD the permuted lower triangle it builds from the matrix's upper
+  // one: entries below the diagonal are not read, whatever they hold (here 7 times their
+  // symmetric value; taking them instead of the upper ones fails this). The same values
+  // reach CHOLMOD, so the answer is the same to the last bit as with the upper triangle alone.
+  const SparseMatrix full = laplacian(12, 0.5);
+  const SparseMatrix upper = full.triangularView<Eigen::Upper>();
+  SparseMatrix skewed = full;
+  for (Eigen::Index j = 0; j < skewed.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(skewed, j); it; ++it)
+      if (it.row() > it.col())
+        it.valueRef() *= 7.0;
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(full.rows(), -1.0, 2.0);
+  std::vector<Eigen::VectorXd> solutions;
+  for (const SparseMatrix* a : std::vector<const SparseMatrix*>{&upper, &skewed}) {
+    CholmodSolver solver;
+    ASSERT_EQ(solver.analyze(*a), SolveStatus::ok);
+    ASSERT_EQ(solver.factorize(*a), SolveStatus::ok);
+    Eigen::VectorXd x;
+    ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+    solutions.push_back(x);
+  }
+  EXPECT_EQ(solutions[0], solutions[1]);
+  EXPECT_LT((full * solutions[0] - rhs).norm(), 1e-13 * rhs.norm());
+}
+
 TEST(CholmodSolver, RefactorizesNewValuesWithoutNewAnalysis) {
   CholmodSolver solver;
   const SparseMatrix first = laplacian(20, 0.0);
