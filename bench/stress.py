@@ -50,6 +50,9 @@ and checks nmm's own history.csv and summary.json against the criterion of each 
   It prints the blocks, steps, cuts, contacts, the kinetic energy's peak and end, both
   works, the deepest penetration and its step, how far the top of the pile and its middle
   block settled, and how far the top of the box's left wall moved.
+- pile_1000_al: the same pile with `penetration_tolerance = 1e-4` m (augmented-Lagrange
+  passes, docs/formulation.md), against the same criteria; it also prints the
+  factorisations and the passes.
 
 - penalty_sweep: examples/03_block_on_incline (a block sliding down a 45 degree ramp,
   phi = 30 degrees, initial equilibrium, dt = 1e-3 s to t = 1 s) with penalty = 1, 10, 40,
@@ -236,6 +239,7 @@ PILE_DT = 2e-3  # s
 PILE_STEPS = 750
 PILE_STEPS_QUICK = 500
 PILE_EVERY = 10  # steps between step files
+PILE_PENETRATION_TOLERANCE = 1e-4  # m (pile_1000_al): a tenth of the criterion
 
 
 def clip_half_plane(polygon, normal, level):
@@ -396,7 +400,7 @@ kind = "dynamic"
 steps = {steps}
 time_step = {dt}
 max_step_displacement = {g2}   # 2 cm over the model size: contacts found 4 cm away
-penalty = 40.0
+penalty = 40.0{tolerance}
 open_close_max = 20
 [[monitor]]
 name = "top"      # the middle block of the top row
@@ -426,10 +430,10 @@ def block_polygons(path):
     return polygons
 
 
-def pile(args):
+def pile(args, tolerance=None):
     nx, ny = (10, 10) if args.quick else (50, 20)
     steps, dt = (PILE_STEPS_QUICK if args.quick else PILE_STEPS), PILE_DT
-    folder = os.path.join(args.work, "pile_1000")
+    folder = os.path.join(args.work, "pile_1000" if tolerance is None else "pile_1000_al")
     bottom = 0.5 * PILE_GAP  # the bottom row PILE_GAP above the floor
     blocks = pile_blocks(nx, ny, 1, bottom)
     width, height = nx * PILE_CELL, bottom + ny * PILE_CELL + PILE_HEADROOM
@@ -440,7 +444,8 @@ def pile(args):
     write(os.path.join(folder, "case.toml"), PILE_CASE.format(
         blocks=len(blocks), steps=steps, dt=repr(dt), g2="%.6g" % (0.02 / size),
         top_x=top[0], top_y=top[1], bottom_x=low[0], bottom_y=low[1],
-        wall_x=-0.5 * PILE_WALL, wall_y=height - 0.5 * PILE_WALL, every=PILE_EVERY))
+        wall_x=-0.5 * PILE_WALL, wall_y=height - 0.5 * PILE_WALL, every=PILE_EVERY,
+        tolerance="" if tolerance is None else "\npenetration_tolerance = %r" % tolerance))
     summary, rows, seconds = run_nmm(args.nmm, os.path.join(folder, "case.toml"),
                                      os.path.join(folder, "out"), "stress")
     criterion = ("%d convex DDA blocks dropped %g m apart into a held box, %d steps of %g s: "
@@ -448,6 +453,8 @@ def pile(args):
                  "the work of gravity (every %d steps) nor load_work, penetration < 1e-3 of "
                  "the block size, no block outside the box"
                  % (len(blocks), PILE_GAP, steps, dt, PILE_EVERY))
+    if tolerance is not None:
+        criterion += "; with penetration_tolerance = %g m (augmented Lagrange)" % tolerance
     if len(rows) < PILE_EVERY:
         return criterion, "%d steps: %s" % (len(rows), summary["status"]), False, seconds
     finite = all_finite(rows)
@@ -508,6 +515,8 @@ def pile(args):
                pile_top, -rows[-1]["top.uy"]))
     result += "; the box's wall top moved %.1e m" % math.hypot(rows[-1]["wall.ux"],
                                                              rows[-1]["wall.uy"])
+    result += "; %d factorisations, %d augmented-Lagrange passes" % (
+        summary["counters"]["factorizations"], summary["counters"]["augmentations"])
     if not completed:
         result += "; status: " + str(summary["status"])
     return criterion, result, passed, seconds
@@ -561,6 +570,7 @@ TESTS = {
     "spin_vem": lambda args: spin(args, "vem"),
     "drop_1e5": drop,
     "pile_1000": pile,
+    "pile_1000_al": lambda args: pile(args, PILE_PENETRATION_TOLERANCE),
     "penalty_sweep": penalty_sweep,
 }
 

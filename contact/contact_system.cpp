@@ -581,7 +581,7 @@ void ContactSystem::kinematics(const Model& model, const ContactPoint& p, Kinema
   // Normal gap (material on the left of a -> b; positive on the void side):
   // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
   // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
-  k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset;
+  k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset - p.shift;
   add(false, false, slave, perp(b - a) / l);
   add(false, true, a, perp(slave - b) / l);
   add(false, true, b, Point2(-perp(slave - a) / l));
@@ -614,7 +614,7 @@ const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& m
   NMM_ASSERT(slot < kinematics_cache_.size(), "a kinematics slot of this step");
   CachedKinematics& c = kinematics_cache_[slot];
   if (!c.valid || c.slave_edge != p.slave_edge || c.master != p.master || c.slave != p.slave ||
-      c.anchor != p.anchor || c.offset != p.offset) {
+      c.anchor != p.anchor || c.offset != p.offset || c.shift != p.shift) {
     kinematics(model, p, c.kinematics);
     c.valid = true;
     c.slave_edge = p.slave_edge;
@@ -622,6 +622,7 @@ const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& m
     c.slave = p.slave;
     c.anchor = p.anchor;
     c.offset = p.offset;
+    c.shift = p.shift;
   }
   return c.kinematics;
 }
@@ -633,8 +634,46 @@ double ContactSystem::gap_at(
   const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
   p.slave = a + u * (d - a);
   p.anchor = 0.0; // the gap does not depend on it: one slot for the whole step
+  p.shift = shift_at(g, u);
   const auto group = static_cast<std::size_t>(&g - groups_.data());
   return cached_kinematics(model, p, points_.size() + 3 * group + at(sample)).gap(raw);
+}
+
+double ContactSystem::shift_at(const Group& g, double u) const {
+  const auto first = points_.begin() + g.first;
+  const auto last = first + g.count;
+  if (std::all_of(first, last, [](const ContactPoint& p) { return p.shift == 0.0; }))
+    return 0.0;
+  std::vector<std::pair<double, double>> shifts;
+  for (auto p = first; p != last; ++p)
+    shifts.emplace_back(p->u, p->shift);
+  return offset_at(shifts, u);
+}
+
+bool ContactSystem::augment() {
+  const double tolerance = options_.penetration_tolerance;
+  if (tolerance <= 0.0)
+    return false;
+  // Converged: no closed contact penetrates by more than the tolerance, and none pushes across
+  // a gap wider than it (a multiplier left from a deeper solve).
+  const bool again = std::any_of(points_.begin(), points_.end(), [&](const ContactPoint& p) {
+    const double penetration = p.offset - p.gap;
+    return closed(p.mode) &&
+           (penetration > tolerance || (p.shift > 0.0 && -penetration > tolerance));
+  });
+  if (!again)
+    return false;
+  // Uzawa's update of the multipliers, lambda = max(0, lambda + p x penetration), as lengths
+  // (lambda / p): a spring's zero moves by what it penetrates now, back by a gap (Simo and
+  // Laursen 1992, eq. 4.6; for DDA Lin et al. 1996). A contact without a bond only pushes:
+  // its multiplier stays >= 0. An open contact's goes the same way (to 0 across its gap).
+  for (ContactPoint& p : points_) {
+    if (!closed(p.mode) && p.shift == 0.0)
+      continue;
+    const double shift = p.shift + (p.offset - p.gap);
+    p.shift = p.bonded ? shift : std::max(0.0, shift);
+  }
+  return true;
 }
 
 std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
@@ -714,7 +753,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
       const double ds = k.tangential(raw);
       measure[at(q)] = {k.gap(raw), k.s0 + ds, ds};
-      p.gap = measure[at(q)].gap + p.offset;
+      p.gap = measure[at(q)].gap + p.offset + p.shift;
     }
     // Modes by Shi's table (8.2), decided per contact from its resultants: an angle contact
     // is one point; the Gauss points of an edge-to-edge pair decide together, as one joint
@@ -965,16 +1004,25 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       g.moved_to = to - g.to;
     }
     std::vector<std::pair<double, double>> offsets;
+    std::vector<std::pair<double, double>> shifts;
     double normal = 0.0;
     for (int q = 0; q < g.count; ++q) {
       const ContactPoint& p = points_[at(g.first + q)];
       offsets.emplace_back(p.u, p.anchor - projection(p.master, p.slave));
+      shifts.emplace_back(p.u, p.shift);
       normal += p.normal_force;
     }
     const int master = points_[at(g.first)].master;
     place(g, from, to, [&](double u, const Point2& slave) {
       return projection(master, slave) + offset_at(offsets, u);
     });
+    // The springs' multipliers go with them as the anchors do (interpolated along the pair).
+    if (std::any_of(shifts.begin(), shifts.end(), [](const auto& s) { return s.second != 0.0; })) {
+      for (int q = 0; q < g.count; ++q) {
+        ContactPoint& p = points_[at(g.first + q)];
+        p.shift = offset_at(shifts, p.u);
+      }
+    }
     double placed = 0.0;
     for (int q = 0; q < g.count; ++q)
       placed += points_[at(g.first + q)].stiffness;

@@ -58,6 +58,17 @@ struct ContactOptions {
   /// ... and the springs left where the edges no longer press pull with less than this
   /// fraction (tension adds to the normal force elsewhere, and so to friction).
   double tension_tolerance = 1e-6;
+  /// Augmented Lagrange (Lin, Amadei, Jung and Dwyer 1996; Simo and Laursen 1992): when a
+  /// converged open-close iteration leaves a closed contact penetrating by more than this,
+  /// every closed spring's zero moves by its penetration (its force so far becomes a
+  /// multiplier carried as a load) and the step is solved again with the same matrix (until
+  /// the modes change), until no contact penetrates by more: towards the contacts of the hard
+  /// limit of the penalty, at the conditioning of a moderate one. 0: the penalty springs
+  /// alone (Shi), m.
+  double penetration_tolerance = 0.0;
+  /// Most augmented-Lagrange passes in a step; a step still penetrating by more after them
+  /// goes on as it is (its penetration is reported).
+  int augment_max = 10;
 };
 
 /// One contact point: an angle against its entrance line, or one Gauss point of an
@@ -92,8 +103,16 @@ struct ContactPoint {
   /// let a corner sink in hundreds of times deeper than a point spring would), takes that
   /// penetration as its springs' zero instead of throwing the bodies apart. It rises with
   /// the gap once the contact opens, and is 0 for everything that meets in the ordinary
-  /// way. The springs push with p (offset - gap).
+  /// way. The springs push with p (offset + shift - gap).
   double offset = 0.0;
+  /// Augmented-Lagrange multiplier over the spring stiffness, m (ContactOptions::
+  /// penetration_tolerance): the springs' zero moved by the penetrations of the step's
+  /// earlier solves, so that they push with the force the multiplier carries plus p times
+  /// the penetration left; it decides opening and closing as the springs' force does (an open
+  /// contact's falls back by its gap at the next pass). 0 at the start of every step
+  /// (multipliers carried to the next step, as Lin et al. do, pushed landing blocks off again:
+  /// docs/formulation.md, "Augmented Lagrange").
+  double shift = 0.0;
 };
 
 /// The friction force of a sliding point as its spring pair's load (Shi eq. 3.27-3.33):
@@ -159,6 +178,14 @@ public:
   /// After a solve with step displacement @p raw: new modes by Shi's mode table, new lift-off
   /// points and new friction loads.
   ModeUpdate update_modes(const Model& model, const Eigen::VectorXd& raw);
+  /// After a converged open-close iteration: when ContactOptions::penetration_tolerance is
+  /// set and a closed contact penetrates by more (or pushes across a wider gap), moves every
+  /// closed spring's zero by its penetration (ContactPoint::shift, an
+  /// augmented-Lagrange update: the matrix stays, the loads change) and returns true: the
+  /// step is to be solved again. False when nothing penetrates by more (or it is not set).
+  /// The penetrations are those update_modes() measured.
+  bool augment();
+
   /// Whether @p update ends the open-close iteration: no mode changed and friction agrees
   /// with the normal forces. When only the friction residual is left, the matrix is the same
   /// and the next solve can reuse its factor.
@@ -241,6 +268,7 @@ private:
     Point2 slave = Point2::Zero();
     double anchor = 0.0;
     double offset = 0.0;
+    double shift = 0.0;
     Kinematics kinematics;
   };
   /// A contact: one angle point, or the Gauss points of one edge-to-edge pair, deciding
@@ -284,7 +312,7 @@ private:
   void kinematics(const Model& model, const ContactPoint& p, Kinematics& k) const;
   /// kinematics(model, p) through slot @p slot of the cache (slots: the points, then three
   /// gap samples per group); the same numbers, computed again only when p's slave point,
-  /// edges, anchor or offset differ from the slot's.
+  /// edges, anchor, offset or shift differ from the slot's.
   [[nodiscard]] const Kinematics&
   cached_kinematics(const Model& model, const ContactPoint& p, std::size_t slot) const;
   /// The shape of @p element at the start of the step (built by begin_step() for the
@@ -296,6 +324,9 @@ private:
       const Model& model, const Group& g, int sample, double u, const Eigen::VectorXd& raw) const;
   /// Places the Gauss points of edge group g on [from, to] (anchors from @p anchor_of(u)).
   template <class AnchorOf> void place(Group& g, double from, double to, const AnchorOf& anchor_of);
+  /// ContactPoint::shift of edge group g at slave parameter u (interpolated between its
+  /// points, the nearest one's beyond them).
+  [[nodiscard]] double shift_at(const Group& g, double u) const;
   /// Anchor parameter on the master of the projection of slave point @p x.
   [[nodiscard]] double projection(int master, const Point2& x) const;
 

@@ -68,6 +68,7 @@ constexpr std::string_view analysis_keys[] = {"kind",
                                               "max_step_displacement",
                                               "penalty",
                                               "penalty_stiffness",
+                                              "penetration_tolerance",
                                               "open_close_max",
                                               "solver",
                                               "max_step_cuts",
@@ -801,6 +802,11 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
   if (spec.penalty_stiffness && !(*spec.penalty_stiffness > 0.0))
     view.fail_range("penalty_stiffness", *spec.penalty_stiffness,
                     "the spring stiffness must be > 0 (N/m)");
+  spec.penetration_tolerance = view.number("penetration_tolerance", "m", "1.0e-4");
+  if (spec.penetration_tolerance && !(*spec.penetration_tolerance > 0.0))
+    view.fail_range("penetration_tolerance", *spec.penetration_tolerance,
+                    "it must be > 0 (m): the deepest penetration a contact may keep; remove "
+                    "the line for the penalty springs alone");
   spec.open_close_max = view.small_integer_or("open_close_max", 6, 1, 100, "6");
   spec.solver = static_cast<LinearSolverKind>(view.choice("solver", solver_kinds, 0));
   if (spec.solver != LinearSolverKind::cholmod)

@@ -162,6 +162,9 @@ struct AnalysisSpec {
   double penalty = 40.0;
   /// Absolute spring stiffness (N/m), > 0, instead of penalty.
   std::optional<double> penalty_stiffness;
+  /// Deepest penetration a closed contact may keep (m), > 0: augmented-Lagrange passes
+  /// (ContactOptions::penetration_tolerance); empty: the penalty springs alone.
+  std::optional<double> penetration_tolerance;
   /// Most open-close iterations per step, 1..100.
   int open_close_max = 6;
   LinearSolverKind solver = LinearSolverKind::cholmod;

@@ -580,6 +580,7 @@ std::unique_ptr<ContactSystem> CaseAnalysis::make_contact_system(double penalty)
   ContactOptions options;
   options.penalty = penalty;
   options.spring_length = model_.scale;
+  options.penetration_tolerance = spec_.analysis.penetration_tolerance.value_or(0.0);
   return std::make_unique<ContactSystem>(options, std::move(strengths), std::move(bonded));
 }
 

@@ -262,6 +262,7 @@ std::string summary_json(const RunSummary& s) {
   counters.integer("factorizations", s.solver_counters.factorizations);
   counters.integer("solves", s.solver_counters.solves);
   counters.integer("plan_rebuilds", s.counters.plan_rebuilds);
+  counters.integer("augmentations", s.counters.augmentations);
   // Where the steps' time went (StepperCounters): the parts add up to seconds_steps.
   const StepperCounters& c = s.counters;
   counters.seconds("seconds_steps", c.seconds_steps);

@@ -16,6 +16,7 @@
 #include <set>
 #include <span>
 #include <sstream>
+#include <string_view>
 #include <utility>
 
 namespace nmm {
@@ -550,6 +551,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     int factorisations = 0;
     int friction_solves = 0;
     int open_close = 0; // iterations that changed a contact's mode
+    int augmentations = 0;
     for (;;) {
       ++iteration;
       Eigen::VectorXd f_iteration = f;
@@ -605,6 +607,17 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       const ModeUpdate update = impl_->contact->update_modes(model_, raw);
       lap(clock, counters_.seconds_contact_modes);
       if (impl_->contact->converged(update)) {
+        // Augmented Lagrange: contacts still penetrating by more than the tolerance move
+        // their springs' zeros by it and the step is solved again with the same factor.
+        const ContactOptions& contact = impl_->contact->options();
+        if (augmentations < contact.augment_max && impl_->contact->augment()) {
+          ++augmentations;
+          ++counters_.augmentations;
+          assemble = false;
+          continue;
+        }
+        if (augmentations == contact.augment_max) // the passes ran out: say so once
+          warn_penetration(impl_->contact->max_penetration(), contact);
         converged = true;
         break;
       }
@@ -752,6 +765,22 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   return report;
 }
 
+void TimeStepper::warn_penetration(double penetration, const ContactOptions& options) {
+  constexpr std::string_view what = "augmented-Lagrange passes";
+  if (penetration <= options.penetration_tolerance ||
+      std::any_of(warnings_.begin(), warnings_.end(),
+                  [&](const std::string& w) { return w.find(what) != std::string::npos; }))
+    return;
+  std::ostringstream w;
+  w << "step " << step_ + 1 << ": after " << options.augment_max << " " << what
+    << " a contact still penetrated by " << penetration << " m, more than penetration_tolerance ("
+    << options.penetration_tolerance
+    << " m); the step went on so. They converge slowly where the pressure concentrates "
+       "(the corners of pressed faces, a tolerance near the hard-contact limit): a larger "
+       "penetration_tolerance, or a larger penalty, holds it in fewer passes";
+  warnings_.push_back(w.str());
+}
+
 namespace {
 
 void save_point(StateWriter& out, const MaterialPoint& point) {
@@ -777,7 +806,7 @@ std::vector<double*> time_counters(StepperCounters& c) {
 
 std::vector<long*> work_counters(StepperCounters& c) {
   return {&c.steps,         &c.step_cuts,      &c.contact_searches, &c.pattern_builds,
-          &c.plan_rebuilds, &c.stress_updates, &c.friction_terms};
+          &c.plan_rebuilds, &c.stress_updates, &c.friction_terms,   &c.augmentations};
 }
 
 } // namespace

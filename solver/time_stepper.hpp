@@ -86,6 +86,9 @@ struct StepperCounters {
   /// Friction loads assembled (a sliding, pressed contact point with friction, per open-close
   /// iteration): 0 in a frictionless scene.
   long friction_terms = 0;
+  /// Augmented-Lagrange passes (ContactOptions::penetration_tolerance): solves again with the
+  /// same matrix after the springs' zeros moved by their penetrations.
+  long augmentations = 0;
   /// Wall time of each part of the steps so far, s (bench/step_bench.cpp and
   /// bench/block_bench.py report them). The parts are laps of one clock through a step, so
   /// they add up to seconds_steps (every try of a cut step included).
@@ -186,6 +189,9 @@ private:
   bool has_mass_ = false; ///< some material has a density
   StepperCounters counters_;
   std::vector<std::string> warnings_;
+  /// Adds the warning that a step's augmented-Lagrange passes ran out with the contacts
+  /// still penetrating by @p penetration, more than the tolerance (once a run).
+  void warn_penetration(double penetration, const ContactOptions& options);
   std::unique_ptr<Impl> impl_;
 };
 

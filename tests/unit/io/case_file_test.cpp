@@ -332,7 +332,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "[contact]\nfriction_angle = 25\ncohesion = 1e4\ntensile_strength = 5e3\n"
       "[analysis]\nkind = \"dynamic\"\nsteps = 50\npenalty_stiffness = 1e12\nopen_close_max = 20\n"
       "solver = \"cholmod\"\nmax_step_cuts = 0\nend_time = 2.5\nmax_step_displacement = 0.5\n"
-      "initial_equilibrium = true\n"
+      "initial_equilibrium = true\npenetration_tolerance = 1e-4\n"
       "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 25\n";
   const CaseSpec spec = parse_case_text(text, "case.toml");
   EXPECT_EQ(spec.title, "Dam on a jointed foundation");
@@ -356,6 +356,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_DOUBLE_EQ(spec.analysis.end_time.value(), 2.5);
   EXPECT_DOUBLE_EQ(spec.analysis.max_step_displacement, 0.5);
   EXPECT_TRUE(spec.analysis.initial_equilibrium);
+  EXPECT_DOUBLE_EQ(spec.analysis.penetration_tolerance.value(), 1e-4);
   EXPECT_EQ(spec.output.dir, fs::path("/tmp/dam"));
   EXPECT_EQ(spec.output.every, 5);
   EXPECT_EQ(spec.output.checkpoint_every, 25);
@@ -558,6 +559,8 @@ std::vector<BadCase> bad_cases() {
        "steps = 0 is out of range; it must be from 1 to 100000000"},
       {"TooManySteps", head + rock + "[analysis]\nsteps = 2e8 # <-\n", "steps = 200000000 is out"},
       {"ZeroTimeStep", minimal + "time_step = 0.0 # <-\n", "time_step = 0 is out of range"},
+      {"ZeroPenetrationTolerance", minimal + "penetration_tolerance = 0.0 # <-\n",
+       "penetration_tolerance = 0 is out of range; it must be > 0 (m)"},
       {"TimeStepWord", minimal + "time_step = \"automatic\" # <-\n",
        "time_step = \"automatic\" is not allowed; write a number of seconds"},
       {"StepDisplacementTooLarge", minimal + "max_step_displacement = 0.6 # <-\n",
