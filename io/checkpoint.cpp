@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Version 2 (2026-11-26): the stepper's counters include friction_terms.
+// Version 2 (2026-11-26): the stepper's counters include friction_terms; version 3, augmentations.
 constexpr std::string_view magic = "nmm checkpoint, version 3\n";
 constexpr std::int64_t byte_order = 0x0102030405060708;
 

@@ -125,6 +125,7 @@ struct Incline {
     long cuts = 0;
     int most_iterations = 0; ///< open-close iterations of the step that took the most
     long augmentations = 0;
+    std::vector<std::string> warnings;
   };
 
   Result run(double duration = 1.0) const {
@@ -163,6 +164,7 @@ struct Incline {
     }
     r.distance = -(stepper.scene().monitors[0].position - start).dot(along);
     r.augmentations = stepper.counters().augmentations;
+    r.warnings = stepper.warnings();
     const double g = 9.81;
     r.exact = std::max(0.0, 0.5 * g * duration * duration *
                                 (std::sin(pi / 4) - std::tan(phi) * std::cos(pi / 4)));
@@ -289,6 +291,15 @@ TEST(Incline, AugmentedLagrangeHoldsSoftSpringsToThePenetrationToleranceWithTheE
   EXPECT_GT(held.augmentations, 0);
   EXPECT_LT(error, 1e-3);
   EXPECT_LT(2 * held.cuts, held.steps);
+  EXPECT_TRUE(held.warnings.empty());
+  // Where the passes run out, the run says so (once): 1e-9 m for 0.05 s.
+  incline.penetration_tolerance = 1e-9;
+  const Incline::Result deep = incline.run(0.05);
+  ASSERT_EQ(deep.warnings.size(), 1u);
+  EXPECT_NE(deep.warnings[0].find("after 10 augmented-Lagrange passes a contact still "
+                                  "penetrated by"),
+            std::string::npos)
+      << deep.warnings[0];
 }
 
 TEST(Incline, BlockWhoseFrictionAngleExceedsTheSlopeStaysPut) {
