@@ -639,15 +639,20 @@ double ContactSystem::gap_at(
   return cached_kinematics(model, p, points_.size() + 3 * group + at(sample)).gap(raw);
 }
 
-double ContactSystem::shift_at(const Group& g, double u) const {
+std::vector<std::pair<double, double>> ContactSystem::shifts_of(const Group& g) const {
   const auto first = points_.begin() + g.first;
   const auto last = first + g.count;
-  if (std::all_of(first, last, [](const ContactPoint& p) { return p.shift == 0.0; }))
-    return 0.0;
   std::vector<std::pair<double, double>> shifts;
-  for (auto p = first; p != last; ++p)
-    shifts.emplace_back(p->u, p->shift);
-  return offset_at(shifts, u);
+  if (std::any_of(first, last, [](const ContactPoint& p) { return p.shift != 0.0; })) {
+    for (auto p = first; p != last; ++p)
+      shifts.emplace_back(p->u, p->shift);
+  }
+  return shifts;
+}
+
+double ContactSystem::shift_at(const Group& g, double u) const {
+  const std::vector<std::pair<double, double>> shifts = shifts_of(g);
+  return shifts.empty() ? 0.0 : offset_at(shifts, u);
 }
 
 bool ContactSystem::augment() {
@@ -1004,12 +1009,11 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       g.moved_to = to - g.to;
     }
     std::vector<std::pair<double, double>> offsets;
-    std::vector<std::pair<double, double>> shifts;
+    const std::vector<std::pair<double, double>> shifts = shifts_of(g);
     double normal = 0.0;
     for (int q = 0; q < g.count; ++q) {
       const ContactPoint& p = points_[at(g.first + q)];
       offsets.emplace_back(p.u, p.anchor - projection(p.master, p.slave));
-      shifts.emplace_back(p.u, p.shift);
       normal += p.normal_force;
     }
     const int master = points_[at(g.first)].master;
@@ -1017,11 +1021,9 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       return projection(master, slave) + offset_at(offsets, u);
     });
     // The springs' multipliers go with them as the anchors do (interpolated along the pair).
-    if (std::any_of(shifts.begin(), shifts.end(), [](const auto& s) { return s.second != 0.0; })) {
-      for (int q = 0; q < g.count; ++q) {
-        ContactPoint& p = points_[at(g.first + q)];
-        p.shift = offset_at(shifts, p.u);
-      }
+    for (int q = 0; q < g.count && !shifts.empty(); ++q) {
+      ContactPoint& p = points_[at(g.first + q)];
+      p.shift = offset_at(shifts, p.u);
     }
     double placed = 0.0;
     for (int q = 0; q < g.count; ++q)

@@ -324,6 +324,9 @@ private:
       const Model& model, const Group& g, int sample, double u, const Eigen::VectorXd& raw) const;
   /// Places the Gauss points of edge group g on [from, to] (anchors from @p anchor_of(u)).
   template <class AnchorOf> void place(Group& g, double from, double to, const AnchorOf& anchor_of);
+  /// (u, ContactPoint::shift) of the points of group g; empty when every shift is 0 (no
+  /// augmented-Lagrange pass: nothing allocated).
+  [[nodiscard]] std::vector<std::pair<double, double>> shifts_of(const Group& g) const;
   /// ContactPoint::shift of edge group g at slave parameter u (interpolated between its
   /// points, the nearest one's beyond them).
   [[nodiscard]] double shift_at(const Group& g, double u) const;
