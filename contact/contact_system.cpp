@@ -78,7 +78,11 @@ public:
     } else if (b_ != 0.0) {
       cut(-c_ / b_);
     }
-    std::sort(cuts.begin(), cuts.begin() + static_cast<std::ptrdiff_t>(n));
+    // Insertion sort of at most four values (std::sort's inlined introsort on a prefix of the
+    // array trips GCC 12's -Warray-bounds: it cannot see n <= 4).
+    for (std::size_t k = 1; k < n; ++k)
+      for (std::size_t j = k; j > 0 && cuts[j] < cuts[j - 1]; --j)
+        std::swap(cuts[j], cuts[j - 1]);
     double first = 2.0;
     double last = -1.0;
     for (std::size_t k = 0; k + 1 < n; ++k) {
@@ -473,10 +477,8 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   }
   counters_.points += static_cast<long>(points_.size());
   last_changed_ = 0;
-  start_.groups = groups_;
-  start_.points = points_;
-  start_.broken = broken_;
-  start_.bonds_broken = counters_.bonds_broken;
+  save(start_);
+  has_converged_ = false;
   kinematics_cache_.resize(points_.size() + 3 * groups_.size());
   for (CachedKinematics& c : kinematics_cache_)
     c.valid = false;
@@ -493,13 +495,37 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   }
 }
 
-void ContactSystem::restart_step() {
-  groups_ = start_.groups;
-  points_ = start_.points;
-  broken_ = start_.broken;
-  counters_.bonds_broken = start_.bonds_broken;
+void ContactSystem::save(State& state) const {
+  state.groups = groups_;
+  state.points = points_;
+  state.broken = broken_;
+  state.bonds_broken = counters_.bonds_broken;
+}
+
+void ContactSystem::restore(const State& state) {
+  groups_ = state.groups;
+  points_ = state.points;
+  broken_ = state.broken;
+  counters_.bonds_broken = state.bonds_broken;
   last_changed_ = 0;
+}
+
+void ContactSystem::restart_step() {
+  restore(start_);
+  has_converged_ = false;
   set_hold_shear(hold_shear_);
+}
+
+bool ContactSystem::back_to_converged(Eigen::VectorXd& raw) {
+  // Only a solve that nearly met the tolerance: a deeper one (a landing impact the passes
+  // could not hold) is better cut, which shortens the impact's step (the 1000-block pile:
+  // falling back on any, its deepest contact was 2.0 mm instead of 0.6 mm).
+  if (!has_converged_ || converged_penetration_ > fallback_depth * options_.penetration_tolerance)
+    return false;
+  restore(converged_);
+  raw = converged_raw_;
+  has_converged_ = false;
+  return true;
 }
 
 const ElementShape& ContactSystem::shape(int element) const {
@@ -655,7 +681,7 @@ double ContactSystem::shift_at(const Group& g, double u) const {
   return shifts.empty() ? 0.0 : offset_at(shifts, u);
 }
 
-bool ContactSystem::augment() {
+bool ContactSystem::augment(Eigen::VectorXd& raw) {
   const double tolerance = options_.penetration_tolerance;
   if (tolerance <= 0.0)
     return false;
@@ -668,6 +694,25 @@ bool ContactSystem::augment() {
   });
   if (!again)
     return false;
+  // The solve to fall back on: of the converged ones, the least penetrating (a pass can close
+  // a contact deeper than any before it where the pushes move bodies into others).
+  const double penetration = max_penetration();
+  if (has_converged_ && penetration > tolerance && penetration >= converged_penetration_) {
+    // The last pass left the deepest contact no shallower: a body squeezed between contacts
+    // whose multipliers grow without pushing it out (the 1000-block pile: 0.78 mm -> 0.88 mm
+    // over four passes while the multiplier grew to 3.4 mm; after such passes a top-row
+    // block was launched 1.1 m up). The step ends on the least penetrating solve.
+    restore(converged_);
+    raw = converged_raw_;
+    has_converged_ = false;
+    return false;
+  }
+  if (!has_converged_ || penetration < converged_penetration_) {
+    save(converged_);
+    converged_raw_ = raw;
+    converged_penetration_ = penetration;
+    has_converged_ = true;
+  }
   // Uzawa's update of the multipliers, lambda = max(0, lambda + p x penetration), as lengths
   // (lambda / p): a spring's zero moves by what it penetrates now, back by a gap (Simo and
   // Laursen 1992, eq. 4.6; for DDA Lin et al. 1996). A contact without a bond only pushes:

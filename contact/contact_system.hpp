@@ -183,8 +183,20 @@ public:
   /// closed spring's zero by its penetration (ContactPoint::shift, an
   /// augmented-Lagrange update: the matrix stays, the loads change) and returns true: the
   /// step is to be solved again. False when nothing penetrates by more (or it is not set).
-  /// The penetrations are those update_modes() measured.
-  bool augment();
+  /// The penetrations are those update_modes() measured after the solve @p raw. The converged
+  /// contacts and @p raw are kept for back_to_converged() when they penetrate less than those
+  /// kept before in this try of the step. When the last pass left the deepest contact no
+  /// shallower than the kept state, the passes stop: the contacts and @p raw go back to that
+  /// state and it returns false (the step ends there).
+  bool augment(Eigen::VectorXd& raw);
+  /// Back to the least penetrating converged state augment() kept (contacts and step
+  /// displacement, into @p raw), when the iteration after a pass does not converge: the step
+  /// keeps that solve, whose springs balanced the loads, instead of being cut. False (the
+  /// step is to be cut) when no pass ran in this try of the step, or when that state
+  /// penetrates by more than fallback_depth times the tolerance.
+  bool back_to_converged(Eigen::VectorXd& raw);
+  /// How far past the penetration tolerance a solve back_to_converged() returns to may be.
+  static constexpr double fallback_depth = 2.0;
 
   /// Whether @p update ends the open-close iteration: no mode changed and friction agrees
   /// with the normal forces. When only the friction residual is left, the matrix is the same
@@ -365,13 +377,22 @@ private:
   std::unordered_map<std::uint64_t, Carried> carried_;
   /// Broken bonds, by contact key (a broken joint never heals).
   std::unordered_map<std::uint64_t, bool> broken_;
-  /// The state begin_step() left, for restart_step().
-  struct Start {
+  /// What an open-close iteration changes: the state begin_step() left, for restart_step(),
+  /// and the least penetrating converged one an augmented-Lagrange pass started from, for
+  /// augment() and back_to_converged().
+  struct State {
     std::vector<Group> groups;
     std::vector<ContactPoint> points;
     std::unordered_map<std::uint64_t, bool> broken;
     long bonds_broken = 0;
-  } start_;
+  };
+  void save(State& state) const;
+  void restore(const State& state);
+  State start_;
+  State converged_;
+  Eigen::VectorXd converged_raw_;
+  bool has_converged_ = false; ///< converged_ is this try's (a pass ran since the step began)
+  double converged_penetration_ = 0.0; ///< max_penetration() of converged_, m
   int last_changed_ = 0;
   bool hold_shear_ = false;
   double held_open_penetration_ = 0.0; ///< deepest a contact held open may penetrate, m

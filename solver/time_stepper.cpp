@@ -610,14 +610,15 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         // Augmented Lagrange: contacts still penetrating by more than the tolerance move
         // their springs' zeros by it and the step is solved again with the same factor.
         const ContactOptions& contact = impl_->contact->options();
-        if (augmentations < contact.augment_max && impl_->contact->augment()) {
+        if (augmentations < contact.augment_max && impl_->contact->augment(raw)) {
           ++augmentations;
           ++counters_.augmentations;
+          open_close = 0; // the pass changed the loads: a new iteration, with its own budget
           assemble = false;
           continue;
         }
-        if (augmentations == contact.augment_max) // the passes ran out: say so once
-          warn_penetration(impl_->contact->max_penetration(), contact);
+        if (augmentations > 0) // the passes ran out or stopped shrinking it: say so once
+          warn_penetration(impl_->contact->max_penetration(), contact, false);
         converged = true;
         break;
       }
@@ -648,6 +649,14 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         break;
     }
     report.open_close_iterations = iteration;
+    if (!converged && impl_->contact->back_to_converged(raw)) {
+      // A pass moved the springs' zeros and the contacts no longer settle: the step keeps
+      // its least penetrating converged solve (a penalty solution, only deeper) rather than
+      // being cut. Cutting these steps, the 1000-block pile of bench/stress.py
+      // pile_1000_al was cut 2504 times in 750 steps and never settled.
+      converged = true;
+      warn_penetration(impl_->contact->max_penetration(), impl_->contact->options(), true);
+    }
     if (!converged) {
       // Shi 8.2: not converged within the allowed iterations: the step is cut to a third.
       if (cut < options_.max_step_cuts && !equilibrium) {
@@ -765,19 +774,36 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   return report;
 }
 
-void TimeStepper::warn_penetration(double penetration, const ContactOptions& options) {
-  constexpr std::string_view what = "augmented-Lagrange passes";
+void TimeStepper::warn_penetration(double penetration,
+                                   const ContactOptions& options,
+                                   bool unsettled) {
+  // One warning a run for each of the two ways the passes end short of the tolerance.
+  const std::string_view what =
+      unsettled ? "after an augmented-Lagrange pass the contacts" : "augmented-Lagrange passes";
   if (penetration <= options.penetration_tolerance ||
       std::any_of(warnings_.begin(), warnings_.end(),
                   [&](const std::string& w) { return w.find(what) != std::string::npos; }))
     return;
   std::ostringstream w;
-  w << "step " << step_ + 1 << ": after " << options.augment_max << " " << what
-    << " a contact still penetrated by " << penetration << " m, more than penetration_tolerance ("
-    << options.penetration_tolerance
-    << " m); the step went on so. They converge slowly where the pressure concentrates "
-       "(the corners of pressed faces, a tolerance near the hard-contact limit): a larger "
-       "penetration_tolerance, or a larger penalty, holds it in fewer passes";
+  w << "step " << step_ + 1 << ": ";
+  if (unsettled)
+    w << what << " changed mode without settling, so the step kept its least penetrating "
+      << "converged solve, where a contact penetrated by " << penetration << " m";
+  else
+    w << "after its " << what << " (at most " << options.augment_max
+      << ", fewer when one leaves the deepest contact no shallower) a contact still "
+         "penetrated by "
+      << penetration << " m";
+  w << ", more than penetration_tolerance (" << options.penetration_tolerance
+    << " m); the step went on so. ";
+  if (unsettled)
+    w << "The passes push the contacts apart further than they settle in a step (many "
+         "bodies landing at once): a larger penetration_tolerance, or a larger penalty, "
+         "needs smaller pushes";
+  else
+    w << "They converge slowly where the pressure concentrates (the corners of pressed "
+         "faces, a tolerance near the hard-contact limit): a larger penetration_tolerance, or "
+         "a larger penalty, holds it in fewer passes";
   warnings_.push_back(w.str());
 }
 
