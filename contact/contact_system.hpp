@@ -388,6 +388,8 @@ private:
   };
   void save(State& state) const;
   void restore(const State& state);
+  /// The contacts and @p raw back to converged_ (which is then no longer this try's).
+  void back_to_kept(Eigen::VectorXd& raw);
   State start_;
   State converged_;
   Eigen::VectorXd converged_raw_;
