@@ -657,14 +657,18 @@ const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& m
   return c.kinematics;
 }
 
-double ContactSystem::gap_at(
-    const Model& model, const Group& g, int sample, double u, const Eigen::VectorXd& raw) const {
+double ContactSystem::gap_at(const Model& model,
+                             const Group& g,
+                             int sample,
+                             double u,
+                             const std::vector<std::pair<double, double>>& shifts,
+                             const Eigen::VectorXd& raw) const {
   ContactPoint p = points_[at(g.first)];
   const Point2& a = boundary_.position[at(p.slave_edge)];
   const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
   p.slave = a + u * (d - a);
   p.anchor = 0.0; // the gap does not depend on it: one slot for the whole step
-  p.shift = shift_at(g, u);
+  p.shift = shifts.empty() ? 0.0 : offset_at(shifts, u);
   const auto group = static_cast<std::size_t>(&g - groups_.data());
   return cached_kinematics(model, p, points_.size() + 3 * group + at(sample)).gap(raw);
 }
@@ -678,11 +682,6 @@ std::vector<std::pair<double, double>> ContactSystem::shifts_of(const Group& g) 
       shifts.emplace_back(p->u, p->shift);
   }
   return shifts;
-}
-
-double ContactSystem::shift_at(const Group& g, double u) const {
-  const std::vector<std::pair<double, double>> shifts = shifts_of(g);
-  return shifts.empty() ? 0.0 : offset_at(shifts, u);
 }
 
 bool ContactSystem::augment(Eigen::VectorXd& raw) {
@@ -859,11 +858,12 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         bearing += points_[at(g.first + q)].stiffness * std::max(0.0, -measure[at(q)].gap);
     }
     if (g.edge) {
-      std::array<double, 3> gaps{gap_at(model, g, 0, g.lo, raw)};
+      const std::vector<std::pair<double, double>> shifts = shifts_of(g);
+      std::array<double, 3> gaps{gap_at(model, g, 0, g.lo, shifts, raw)};
       std::size_t n = 1;
       if (gauss_ == 3)
-        gaps[n++] = gap_at(model, g, 1, 0.5 * (g.lo + g.hi), raw);
-      gaps[n++] = gap_at(model, g, 2, g.hi, raw);
+        gaps[n++] = gap_at(model, g, 1, 0.5 * (g.lo + g.hi), shifts, raw);
+      gaps[n++] = gap_at(model, g, 2, g.hi, shifts, raw);
       const std::span<const double> samples(gaps.data(), n);
       const GapProfile profile(g.lo, g.hi, samples);
       pressed = profile.negative();

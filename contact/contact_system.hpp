@@ -330,18 +330,21 @@ private:
   /// The shape of @p element at the start of the step (built by begin_step() for the
   /// elements of every contact point's edges).
   [[nodiscard]] const ElementShape& shape(int element) const;
-  /// Normal gap at slave parameter u of edge group g after the step displacement raw; @p sample
-  /// (0 at lo, 1 in the middle, 2 at hi) is its cached_kinematics() slot of the group.
-  [[nodiscard]] double gap_at(
-      const Model& model, const Group& g, int sample, double u, const Eigen::VectorXd& raw) const;
+  /// Normal gap at slave parameter u of edge group g after the step displacement raw, with
+  /// the multiplier interpolated from @p shifts (shifts_of(g), taken once for the group's
+  /// samples); @p sample (0 at lo, 1 in the middle, 2 at hi) is its cached_kinematics() slot
+  /// of the group.
+  [[nodiscard]] double gap_at(const Model& model,
+                              const Group& g,
+                              int sample,
+                              double u,
+                              const std::vector<std::pair<double, double>>& shifts,
+                              const Eigen::VectorXd& raw) const;
   /// Places the Gauss points of edge group g on [from, to] (anchors from @p anchor_of(u)).
   template <class AnchorOf> void place(Group& g, double from, double to, const AnchorOf& anchor_of);
   /// (u, ContactPoint::shift) of the points of group g; empty when every shift is 0 (no
   /// augmented-Lagrange pass: nothing allocated).
   [[nodiscard]] std::vector<std::pair<double, double>> shifts_of(const Group& g) const;
-  /// ContactPoint::shift of edge group g at slave parameter u (interpolated between its
-  /// points, the nearest one's beyond them).
-  [[nodiscard]] double shift_at(const Group& g, double u) const;
   /// Anchor parameter on the master of the projection of slave point @p x.
   [[nodiscard]] double projection(int master, const Point2& x) const;
 
