@@ -56,7 +56,8 @@ constexpr std::string_view material_keys[] = {"model",
                                               "thickness",
                                               "initial_velocity",
                                               "initial_angular_velocity",
-                                              "initial_stress"};
+                                              "initial_stress",
+                                              "exact_rotation"};
 constexpr std::string_view joint_keys[] = {"friction_angle", "cohesion", "tensile_strength"};
 constexpr std::string_view boundary_keys[] = {"curve", "point", "fix", "method"};
 constexpr std::string_view load_keys[] = {
@@ -636,6 +637,14 @@ MaterialRead read_material(Context& context, const NamedTable& item) {
   spec.initial_angular_velocity = view.number_or("initial_angular_velocity", 0.0, "rad/s", "0.0");
   spec.initial_stress = view.vector<3>("initial_stress", "Pa: sxx, syy, sxy", "[0.0, 0.0, 0.0]")
                             .value_or(Eigen::Vector3d::Zero());
+  spec.exact_rotation = view.boolean_or("exact_rotation", false);
+  if (view.has("exact_rotation") && spec.model != MaterialModel::vem)
+    view.fail_at_key("exact_rotation",
+                     "[materials." + item.name + "] exact_rotation is a choice of `vem` regions " +
+                         (spec.model == MaterialModel::dda
+                              ? "(DDA blocks always turn by their rotation exactly)"
+                              : "(NMM covers move by their cover functions)") +
+                         "; remove it");
   return read;
 }
 

@@ -86,6 +86,9 @@ struct MaterialSpec {
   double initial_angular_velocity = 0.0;
   /// Initial stress (Pa) as (sxx, syy, sxy); tension positive.
   Eigen::Vector3d initial_stress = Eigen::Vector3d::Zero();
+  /// `exact_rotation`: a `vem` region's blocks turn by each step's rotation exactly
+  /// (ElasticMaterial::exact_rotation). Only `vem` regions take it.
+  bool exact_rotation = false;
 };
 
 /// Mohr-Coulomb strength of a joint or of a contact (`[joints.NAME]`, `[contact]`).

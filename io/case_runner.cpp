@@ -92,6 +92,7 @@ ElasticMaterial elastic_material(const MaterialSpec& spec) {
   m.plane = spec.plane;
   m.thickness = spec.thickness;
   m.initial_stress = spec.initial_stress;
+  m.exact_rotation = spec.exact_rotation;
   return m;
 }
 

@@ -153,6 +153,17 @@ public:
   /// eta_E (I - P_u)^T (I - P_u) d. Call before move().
   void accumulate_stress(const Eigen::VectorXd& raw);
 
+  /// The exact rotation of the VEM blocks whose material has `exact_rotation`
+  /// (docs/formulation.md, "VEM block: exact rotation"). Each such block's step turns it by
+  /// r0 (its projected rotation, VemShape::rotation) about its centroid c only to first
+  /// order, r0 J (x - c); this adds the rest, (R(r0) - I - r0 J)(x_i - c), to each vertex's
+  /// step displacement in @p raw, and turns each vertex velocity relative to the centroid's
+  /// by R(r0) in @p velocity, so that a rigid spin's velocities turn with the block. The added
+  /// field is affine, which the block's interpolation reproduces exactly, so moving every
+  /// point of the block by the new @p raw turns it exactly. Call after accumulate_stress()
+  /// (the stress turns by r0 there) and before move(); no change without such blocks.
+  void turn_exactly(Eigen::VectorXd& raw, Eigen::VectorXd& velocity) const;
+
   /// Moves covers, element polygons, loops, curve pieces and @p points with the step
   /// displacement (Shi 1997, chapter 8.1: the geometry of the next step).
   void move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points);

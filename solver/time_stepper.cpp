@@ -744,6 +744,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   }
   model_.accumulate_stress(raw);
   ++counters_.stress_updates;
+  model_.turn_exactly(raw, velocity_);
   std::vector<MaterialPoint> points;
   for (const SupportPoint& s : scene_.supports)
     points.push_back(s.point);

@@ -167,6 +167,7 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_DOUBLE_EQ(material.thickness, 1.0);
   EXPECT_TRUE(material.initial_velocity.isZero());
   EXPECT_TRUE(material.initial_stress.isZero());
+  EXPECT_FALSE(material.exact_rotation);
 
   EXPECT_TRUE(spec.joints.empty());
   EXPECT_DOUBLE_EQ(spec.contact.friction_angle_degrees, 0.0);
@@ -329,6 +330,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "min_cover_area_ratio = 0.0\ncurve_tolerance = 0.05\n"
       "[materials.concrete]\nmodel = \"vem\"\ndensity = 2400\nyoung = 3e10\npoisson = 0.2\n"
       "plane = \"stress\"\nthickness = 0.3\ninitial_angular_velocity = 0.1\n"
+      "exact_rotation = true\n"
       "[contact]\nfriction_angle = 25\ncohesion = 1e4\ntensile_strength = 5e3\n"
       "[analysis]\nkind = \"dynamic\"\nsteps = 50\npenalty_stiffness = 1e12\nopen_close_max = 20\n"
       "solver = \"cholmod\"\nmax_step_cuts = 0\nend_time = 2.5\nmax_step_displacement = 0.5\n"
@@ -346,6 +348,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_EQ(concrete.plane, PlaneCondition::stress);
   EXPECT_DOUBLE_EQ(concrete.thickness, 0.3);
   EXPECT_DOUBLE_EQ(concrete.initial_angular_velocity, 0.1);
+  EXPECT_TRUE(concrete.exact_rotation);
   EXPECT_DOUBLE_EQ(spec.contact.friction_angle_degrees, 25.0);
   EXPECT_DOUBLE_EQ(spec.contact.cohesion, 1e4);
   EXPECT_DOUBLE_EQ(spec.contact.tensile_strength, 5e3);
@@ -507,6 +510,13 @@ std::vector<BadCase> bad_cases() {
        "young must be a number (Pa), not a string (\"5e9\"); remove the quotes"},
       {"BooleanForNumber", head + "[materials.rock]\ndensity = true # <-\n",
        "density must be a number (kg/m^3), not a boolean"},
+      {"StringForBoolean", head + rock + "model = \"vem\"\nexact_rotation = \"yes\" # <-\n",
+       "exact_rotation must be true or false (without quotes)"},
+      {"ExactRotationOfDdaBlocks", head + rock + "model = \"dda\"\nexact_rotation = true # <-\n",
+       "[materials.rock] exact_rotation is a choice of `vem` regions (DDA blocks always turn by "
+       "their rotation exactly); remove it"},
+      {"ExactRotationOfNmmCovers", head + rock + "exact_rotation = false # <-\n",
+       "(NMM covers move by their cover functions); remove it"},
       {"FractionalSteps", head + rock + "[analysis]\nsteps = 1.5 # <-\n",
        "steps must be a whole number, not 1.5"},
       {"StringForSteps", head + rock + "[analysis]\nsteps = \"100\" # <-\n",
