@@ -1069,9 +1069,11 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       return projection(master, slave) + offset_at(offsets, u);
     });
     // The springs' multipliers go with them as the anchors do (interpolated along the pair).
-    for (int q = 0; q < g.count && !shifts.empty(); ++q) {
-      ContactPoint& p = points_[at(g.first + q)];
-      p.shift = offset_at(shifts, p.u);
+    if (!shifts.empty()) {
+      for (int q = 0; q < g.count; ++q) {
+        ContactPoint& p = points_[at(g.first + q)];
+        p.shift = offset_at(shifts, p.u);
+      }
     }
     double placed = 0.0;
     for (int q = 0; q < g.count; ++q)

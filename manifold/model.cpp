@@ -392,11 +392,7 @@ void Model::turn_exactly(Eigen::VectorXd& raw, Eigen::VectorXd& velocity) const 
     const double r0 = vem.rotation({values.data(), static_cast<std::size_t>(values.size())});
     if (r0 == 0.0)
       continue;
-    // The centroid, from the first moments about the first vertex (accurate far from 0).
-    Moments2 moments(1, vem.vertices().front());
-    for (const Polygon& p : element.polygons)
-      moments += polygon_moments(p, 1, moments.origin());
-    const Point2 centre = moments.centroid();
+    const Point2 centre = centroid(element.polygons);
     // R(r0) - I - r0 J, J = [[0, -1], [1, 0]] the quarter turn: second order in r0.
     const Eigen::Matrix2d turn = Eigen::Rotation2Dd(r0).toRotationMatrix();
     Eigen::Matrix2d rest = turn - Eigen::Matrix2d::Identity();
@@ -576,9 +572,7 @@ void add_block_elements(Model& model, const std::vector<ElementKind>& region_kin
     cover.kind = kind;
     cover.block = static_cast<int>(b);
     if (kind == ElementKind::dda) {
-      Moments2 moments(1, polygon.outer.front());
-      moments += polygon_moments(polygon, 1, polygon.outer.front());
-      cover.position = moments.centroid();
+      cover.position = centroid(element.polygons);
       element.covers.push_back(model.n_covers());
       model.covers.push_back(cover);
     } else {

@@ -218,6 +218,14 @@ Moments2 polygon_moments(const Polygon& polygon, int degree, const Point2& origi
   return result;
 }
 
+Point2 centroid(std::span<const Polygon> polygons) {
+  const Point2 origin = polygons.front().outer.front();
+  Moments2 moments(1, origin);
+  for (const Polygon& polygon : polygons)
+    moments += polygon_moments(polygon, 1, origin);
+  return moments.centroid();
+}
+
 // ---------------------------------------------------------------------------- Moments3
 
 namespace {

@@ -110,6 +110,11 @@ oriented_loop_moments(std::span<const Point2> loop, int degree, const Point2& or
 [[nodiscard]] Moments2
 polygon_moments(std::span<const Point2> loop, int degree, const Point2& origin);
 
+/// The centroid of @p polygons (a block: its polygons' areas together), from their first
+/// moments about the first polygon's first vertex (accurate far from 0).
+/// @pre at least one polygon, and a nonzero area.
+[[nodiscard]] Point2 centroid(std::span<const Polygon> polygons);
+
 /// A point or vector in space (for the 3D simplex integration).
 using Point3 = Eigen::Vector3d;
 

@@ -228,6 +228,27 @@ TEST(SimplexIntegration, RandomConcavePolygonsMatchGaussQuadratureToDegreeEight)
   }
 }
 
+TEST(SimplexIntegration, CentroidOfABlocksPolygonsFarFromTheOrigin) {
+  // centroid(): an L of 3 m² (centroid (5/6, 5/6) from its corner) and, as a second polygon
+  // of the same block, a 1 m square with a 0.5 m square hole (centroid its centre), 1e6 m
+  // from the origin. Together: (3 (5/6, 5/6) + 0.75 (3.5, 0.5)) / 3.75 from the corner. The
+  // moments are taken about the first vertex, so the error is that of coordinates of 1e6 m:
+  // 1e-9 m.
+  const Point2 o(1e6, -1e6);
+  Polygon l_shape;
+  l_shape.outer = {
+      o, o + Point2(2, 0), o + Point2(2, 1), o + Point2(1, 1), o + Point2(1, 2), o + Point2(0, 2)};
+  Polygon frame;
+  frame.outer = {o + Point2(3, 0), o + Point2(4, 0), o + Point2(4, 1), o + Point2(3, 1)};
+  frame.holes = {{o + Point2(3.25, 0.25), o + Point2(3.25, 0.75), o + Point2(3.75, 0.75),
+                  o + Point2(3.75, 0.25)}};
+  const std::vector<Polygon> one{l_shape};
+  EXPECT_LT((centroid(one) - (o + Point2(5.0, 5.0) / 6.0)).norm(), 1e-9);
+  const std::vector<Polygon> both{l_shape, frame};
+  const Point2 expected = o + (3.0 * Point2(5.0, 5.0) / 6.0 + 0.75 * Point2(3.5, 0.5)) / 3.75;
+  EXPECT_LT((centroid(both) - expected).norm(), 1e-9);
+}
+
 TEST(SimplexIntegration, PolygonWithHolesIsOuterMinusHoles) {
   std::mt19937 rng(7);
   const int degree = 8;
