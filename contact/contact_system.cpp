@@ -690,16 +690,15 @@ bool ContactSystem::augment(Eigen::VectorXd& raw) {
     return false;
   // Converged: no closed contact penetrates by more than the tolerance, and none pushes across
   // a gap wider than it (a multiplier left from a deeper solve).
-  const bool again = std::any_of(points_.begin(), points_.end(), [&](const ContactPoint& p) {
-    const double penetration = p.offset - p.gap;
-    return closed(p.mode) &&
-           (penetration > tolerance || (p.shift > 0.0 && -penetration > tolerance));
-  });
+  const double penetration = max_penetration();
+  const bool again = penetration > tolerance ||
+                     std::any_of(points_.begin(), points_.end(), [&](const ContactPoint& p) {
+                       return closed(p.mode) && p.shift > 0.0 && p.gap - p.offset > tolerance;
+                     });
   if (!again)
     return false;
   // The solve to fall back on: of the converged ones, the least penetrating (a pass can close
   // a contact deeper than any before it where the pushes move bodies into others).
-  const double penetration = max_penetration();
   if (has_converged_ && penetration > tolerance && penetration >= converged_penetration_) {
     // The last pass left the deepest contact no shallower: a body squeezed between contacts
     // whose multipliers grow without pushing it out (the 100-block pile: 0.78 mm -> 0.88 mm
