@@ -914,13 +914,20 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       // A contact that has switched between lock and slide chatter_limit times in the step
       // sits at the limit of friction (locked it needs more than friction, sliding it turns
       // back against it): it stays locked for the rest of the step (a held slide could push
-      // along its motion and feed energy in; a lock only holds).
-      if (std::abs(shear) > limit + noise && lead.slips >= options_.chatter_limit && !hold_shear_) {
-        ++counters_.chatter_holds;
-      } else if (std::abs(shear) > limit + noise && !hold_shear_) {
-        after = ContactMode::slide;
-        sign = shear > 0.0 ? 1 : -1;
-        breaks = lead.bonded;
+      // along its motion and feed energy in; a lock only holds), and the step reports by how
+      // much it exceeds its limit (ModeUpdate::lock_excess). A lock without any friction
+      // limit is never held: with no normal force and no cohesion it slides freely, which
+      // cannot chatter (a tunnel's faces at a tie were held with 0.42 MN of shear and no
+      // normal force; docs/formulation.md, "Chatter rule").
+      if (std::abs(shear) > limit + noise && !hold_shear_) {
+        if (limit > 0.0 && lead.slips >= options_.chatter_limit) {
+          ++counters_.chatter_holds;
+          update.lock_excess = std::max(update.lock_excess, std::abs(shear) / limit);
+        } else {
+          after = ContactMode::slide;
+          sign = shear > 0.0 ? 1 : -1;
+          breaks = lead.bonded;
+        }
       }
     } else if (motion * lead.slide_sign < -rounding_) {
       // The sliding reversed against its friction: it sticks. Without any friction or

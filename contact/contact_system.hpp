@@ -133,6 +133,9 @@ struct ModeUpdate {
   /// Work of the change of the friction forces since they were applied, over the work of
   /// all friction in the step (0 when nothing slides).
   double friction_residual = 0.0;
+  /// Largest shear over friction limit of the locks this update holds beyond their limit
+  /// (the chatter rule at the limit of friction), 0 when every lock is within friction.
+  double lock_excess = 0.0;
 };
 
 /// Counters for summary.json and benchmarks.

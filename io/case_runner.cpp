@@ -833,6 +833,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   result.wall_seconds = summary.wall_seconds;
   result.step_cuts = summary.step_cuts;
   result.max_penetration = summary.max_penetration;
+  result.locks_beyond_friction = summary.counters.locks_beyond_friction;
+  result.max_lock_excess = summary.counters.max_lock_excess;
   result.warnings = summary.warnings;
   return result;
 }

@@ -155,6 +155,10 @@ struct RunResult {
   long step_cuts = 0;
   /// Deepest penetration of a closed contact at the end of any step, m.
   double max_penetration = 0.0;
+  /// Steps that ended with a contact held locked beyond its friction limit, and the largest
+  /// shear over limit among them (StepperCounters).
+  long locks_beyond_friction = 0;
+  double max_lock_excess = 0.0;
   std::filesystem::path output_dir;
   /// Number of step files written.
   long output_steps = 0;

@@ -249,6 +249,7 @@ std::string summary_json(const RunSummary& s) {
   root.integer("unknowns", s.unknowns);
   root.integer("step_cuts", s.step_cuts);
   root.number("max_penetration", s.max_penetration);
+  root.number("max_lock_excess", s.counters.max_lock_excess);
   root.key("counters");
   JsonObject counters(out, root.inner_indent());
   counters.integer("steps", s.counters.steps);
@@ -263,6 +264,7 @@ std::string summary_json(const RunSummary& s) {
   counters.integer("solves", s.solver_counters.solves);
   counters.integer("plan_rebuilds", s.counters.plan_rebuilds);
   counters.integer("augmentations", s.counters.augmentations);
+  counters.integer("locks_beyond_friction", s.counters.locks_beyond_friction);
   // Where the steps' time went (StepperCounters): the parts add up to seconds_steps.
   const StepperCounters& c = s.counters;
   counters.seconds("seconds_steps", c.seconds_steps);

@@ -348,8 +348,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     ++counters_.contact_searches;
   }
   lap(clock, counters_.seconds_detection);
-  double work = 0.0; // of the loads in the step (its last try)
+  double work = 0.0;        // of the loads in the step (its last try)
+  double lock_excess = 0.0; // of the last try's converged update (ModeUpdate::lock_excess)
   for (int cut = 0;; ++cut) {
+    lock_excess = 0.0;
     lap(clock, counters_.seconds_step_control); // the checks of a try that was cut
     if (cut > 0 && impl_->contact)
       impl_->contact->restart_step();
@@ -620,6 +622,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         if (augmentations > 0) // the passes ran out or stopped shrinking it: say so once
           warn_penetration(impl_->contact->max_penetration(), contact, false);
         converged = true;
+        lock_excess = update.lock_excess;
         break;
       }
       assemble = update.changes > 0;
@@ -741,6 +744,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     impl_->contact->end_step(model_, raw);
     report.contacts = impl_->contact->n_closed();
     report.max_penetration = impl_->contact->max_penetration();
+    if (lock_excess > 0.0) {
+      ++counters_.locks_beyond_friction;
+      counters_.max_lock_excess = std::max(counters_.max_lock_excess, lock_excess);
+    }
   }
   model_.accumulate_stress(raw);
   ++counters_.stress_updates;
@@ -832,8 +839,9 @@ std::vector<double*> time_counters(StepperCounters& c) {
 }
 
 std::vector<long*> work_counters(StepperCounters& c) {
-  return {&c.steps,         &c.step_cuts,      &c.contact_searches, &c.pattern_builds,
-          &c.plan_rebuilds, &c.stress_updates, &c.friction_terms,   &c.augmentations};
+  return {&c.steps,          &c.step_cuts,     &c.contact_searches,
+          &c.pattern_builds, &c.plan_rebuilds, &c.stress_updates,
+          &c.friction_terms, &c.augmentations, &c.locks_beyond_friction};
 }
 
 } // namespace
@@ -849,6 +857,7 @@ void TimeStepper::save_state(StateWriter& out) const {
     out.put(static_cast<std::int64_t>(*c));
   for (const double* c : time_counters(counters))
     out.put(*c);
+  out.put(counters.max_lock_excess);
   const SolverCounters solver = solver_counters();
   out.put(static_cast<std::int64_t>(solver.symbolic_analyses));
   out.put(static_cast<std::int64_t>(solver.factorizations));
@@ -905,6 +914,7 @@ void TimeStepper::load_state(StateReader& in) {
     *c = static_cast<long>(in.integer());
   for (double* c : time_counters(counters_))
     *c = in.real();
+  counters_.max_lock_excess = in.real();
   impl_->restored_counters.symbolic_analyses = static_cast<long>(in.integer());
   impl_->restored_counters.factorizations = static_cast<long>(in.integer());
   impl_->restored_counters.solves = static_cast<long>(in.integer());

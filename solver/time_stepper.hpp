@@ -89,6 +89,11 @@ struct StepperCounters {
   /// Augmented-Lagrange passes (ContactOptions::penetration_tolerance): solves again with the
   /// same matrix after the springs' zeros moved by their penetrations.
   long augmentations = 0;
+  /// Steps that ended with a contact held locked beyond its friction limit by the chatter
+  /// rule (ModeUpdate::lock_excess), and the largest shear over limit among them (0: Coulomb's
+  /// law held at every contact at the end of every step).
+  long locks_beyond_friction = 0;
+  double max_lock_excess = 0.0;
   /// Wall time of each part of the steps so far, s (bench/step_bench.cpp and
   /// bench/block_bench.py report them). The parts are laps of one clock through a step, so
   /// they add up to seconds_steps (every try of a cut step included).

@@ -96,6 +96,13 @@ TEST_F(Example, SingleJointWedgeStandsWhenItsFrictionExceedsTheDip) {
   EXPECT_NEAR(example.last("time"), 1.0, 1e-9);
   EXPECT_LT(std::hypot(example.monitor("wedge", "ux"), example.monitor("wedge", "uy")), 1e-4);
   EXPECT_LT(std::hypot(example.monitor("wedge", "vx"), example.monitor("wedge", "vy")), 1e-4);
+  // Pairs along the joint at the limit of friction (the wedge's elastic shear is uneven
+  // along it) are held locked beyond their limit by the chatter rule, and summary.json says
+  // so (docs/formulation.md, "Chatter rule"): measured 478 of the 500 steps, up to 4.67 times
+  // the limit (2026-11-28). The bound 10 catches a rule that holds more.
+  EXPECT_GT(example.summary.at("counters").at("locks_beyond_friction").number, 0.0);
+  EXPECT_GT(example.summary.at("max_lock_excess").number, 1.0);
+  EXPECT_LT(example.summary.at("max_lock_excess").number, 10.0);
 }
 
 TEST_F(Example, JointedDoubleCantileverLayersEachCarryHalfTheLoad) {

@@ -548,6 +548,62 @@ TEST(Stack, FacesTouchingWithoutForceKeepTheirModeAndSprings) {
   EXPECT_EQ(residual, 0.0);
 }
 
+TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlides) {
+  // The chatter rule at the limit of friction (docs/formulation.md, "Chatter rule"): a contact
+  // that has switched between lock and slide three times in a step is held locked for the
+  // rest of the step, and the update reports its shear over its friction limit
+  // (ModeUpdate::lock_excess, summed up in summary.json). A lock whose limit is nil (its
+  // faces at a tie, no spring pressing, no cohesion) is never held: it slides, as friction
+  // without a normal force allows (the tunnel of examples/12 held such faces with 0.42 MN).
+  // The row of four DDA blocks on a base, moved by prescribed solves: pressed 0.1 mm into
+  // the base and pushed 1 mm along it and back, twice (shear k 1 mm against a limit of
+  // k 0.1 mm tan 30 degrees), then pressed and pushed once more, then pushed at a tie.
+  testing::Setup s = testing::row_of_blocks_on_a_base(ElementKind::dda);
+  auto contact =
+      contact_for(s.model, 40.0 * s.model.materials[0].young, {30.0 * pi / 180.0, 0.0, 0.0});
+  contact->begin_step(s.model, 1e-2);
+  const int base =
+      s.model.elements[static_cast<std::size_t>(s.model.find_element({1002.0, -500.5}, 1e-9))]
+          .block;
+  const auto moved = [&](double depth, double along) {
+    Eigen::VectorXd raw = Eigen::VectorXd::Zero(s.model.n_dofs());
+    for (int k = 0; k < s.model.n_covers(); ++k) {
+      if (s.model.covers[static_cast<std::size_t>(k)].block != base) {
+        raw(s.model.dof(k, 0)) = along;
+        raw(s.model.dof(k, 1)) = -depth;
+      }
+    }
+    return raw;
+  };
+  // Contacts in @p mode, of those that switched between lock and slide at least @p slips
+  // times (the faces between blocks do not move: they never switch).
+  const auto in_mode = [&](ContactMode mode, int slips) {
+    int n = 0;
+    for (const ContactPoint& p : contact->points())
+      n += p.mode == mode && p.slips >= slips ? 1 : 0;
+    return n;
+  };
+  for (int twice = 0; twice < 2; ++twice) {
+    EXPECT_EQ(contact->update_modes(s.model, moved(1e-4, 1e-3)).lock_excess, 0.0);
+    EXPECT_GT(in_mode(ContactMode::slide, 0), 0) << "the lock let go";
+    EXPECT_EQ(contact->update_modes(s.model, moved(1e-4, -1e-3)).lock_excess, 0.0);
+    EXPECT_EQ(in_mode(ContactMode::slide, 0), 0) << "the slide turned back: it sticks";
+  }
+  const int chattered = in_mode(ContactMode::lock, 3);
+  ASSERT_GT(chattered, 0);
+  // Pressed and pushed again: held locked, and reported.
+  const ModeUpdate held = contact->update_modes(s.model, moved(1e-4, 1e-3));
+  EXPECT_EQ(in_mode(ContactMode::lock, 3), chattered);
+  EXPECT_GT(held.lock_excess, 1.0);
+  // Pushed at a tie: nothing presses, so nothing holds them.
+  const ModeUpdate tie = contact->update_modes(s.model, moved(0.0, 1e-3));
+  EXPECT_EQ(tie.lock_excess, 0.0);
+  EXPECT_EQ(in_mode(ContactMode::slide, 3), chattered);
+  std::printf("%d contacts chattered; held with %.3g times the friction limit; at a tie: %d "
+              "sliding\n",
+              chattered, held.lock_excess, in_mode(ContactMode::slide, 3));
+}
+
 TEST(AngleContacts, OverlappingCornersStartWithoutShearAndWithoutPushing) {
   // As when a face turns past the angle criterion and angle contacts take over from an
   // edge-to-edge one, a corner starts a step inside another body's corner: a square
