@@ -552,7 +552,7 @@ TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlide
   // The chatter rule at the limit of friction (docs/formulation.md, "Chatter rule"): a contact
   // that has switched between lock and slide three times in a step is held locked for the
   // rest of the step, and the update reports its shear over its friction limit
-  // (ModeUpdate::lock_excess, summed up in summary.json). A lock whose limit is nil (its
+  // (ModeUpdate::lock_excess, gathered in summary.json). A lock whose limit is nil (its
   // faces at a tie, no spring pressing, no cohesion) is never held: it slides, as friction
   // without a normal force allows (the tunnel of examples/12 held such faces with 0.42 MN).
   // The row of four DDA blocks on a base, moved by prescribed solves: pressed 0.1 mm into
