@@ -996,12 +996,14 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     double placed = 0.0;
     for (int q = 0; q < g.count; ++q)
       placed += points_[at(g.first + q)].stiffness;
+    // The shear force on the master along its edge (first vertex to next): the spring's pull,
+    // or friction's, which opposes the slave's sliding (sign) and so pulls the master along.
     for (int q = 0; q < g.count; ++q) {
       ContactPoint& p = points_[at(g.first + q)];
       const double share = placed > 0.0 ? p.stiffness / placed : 0.0;
       p.normal_force = now * share;
       p.shear_force = after == ContactMode::lock    ? p.stiffness * measure[at(q)].shear
-                      : after == ContactMode::slide ? -sign * std::max(0.0, now) * friction * share
+                      : after == ContactMode::slide ? sign * std::max(0.0, now) * friction * share
                                                     : 0.0;
     }
     if (after == ContactMode::slide) {

@@ -604,6 +604,45 @@ TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlide
               chattered, held.lock_excess, in_mode(ContactMode::slide, 3));
 }
 
+TEST(Chatter, TheShearForceKeepsItsSignWhenALockSlips) {
+  // contacts_NNNNNN.vtp's shear_force is the force on the master along its edge, locked or
+  // sliding (docs/output.md): when a lock lets go, friction takes over in the same direction.
+  // Before 2026-11-28 a sliding point reported the force on the slave (the opposite sign).
+  // The row of four DDA blocks on a base, pressed 0.1 mm: pushed 1 um along the base it stays
+  // locked (shear k 1 um against a limit of k 0.1 mm tan 30 degrees), pushed 1 mm it slides.
+  testing::Setup s = testing::row_of_blocks_on_a_base(ElementKind::dda);
+  auto contact =
+      contact_for(s.model, 40.0 * s.model.materials[0].young, {30.0 * pi / 180.0, 0.0, 0.0});
+  contact->begin_step(s.model, 1e-2);
+  const int base =
+      s.model.elements[static_cast<std::size_t>(s.model.find_element({1002.0, -500.5}, 1e-9))]
+          .block;
+  const auto moved = [&](double along) {
+    Eigen::VectorXd raw = Eigen::VectorXd::Zero(s.model.n_dofs());
+    for (int k = 0; k < s.model.n_covers(); ++k) {
+      if (s.model.covers[static_cast<std::size_t>(k)].block != base) {
+        raw(s.model.dof(k, 0)) = along;
+        raw(s.model.dof(k, 1)) = -1e-4;
+      }
+    }
+    return raw;
+  };
+  (void)contact->update_modes(s.model, moved(1e-6));
+  std::vector<double> locked;
+  for (const ContactPoint& p : contact->points())
+    locked.push_back(p.mode == ContactMode::lock ? p.shear_force : 0.0);
+  (void)contact->update_modes(s.model, moved(1e-3));
+  int slid = 0;
+  for (std::size_t i = 0; i < locked.size(); ++i) {
+    const ContactPoint& p = contact->points()[i];
+    if (p.mode != ContactMode::slide || p.shear_force == 0.0)
+      continue;
+    ++slid;
+    EXPECT_GT(locked[i] * p.shear_force, 0.0) << "point " << i;
+  }
+  EXPECT_GT(slid, 0);
+}
+
 TEST(AngleContacts, OverlappingCornersStartWithoutShearAndWithoutPushing) {
   // As when a face turns past the angle criterion and angle contacts take over from an
   // edge-to-edge one, a corner starts a step inside another body's corner: a square
