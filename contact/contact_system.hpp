@@ -134,7 +134,8 @@ struct ModeUpdate {
   /// all friction in the step (0 when nothing slides).
   double friction_residual = 0.0;
   /// Largest shear over friction limit of the locks this update holds beyond their limit
-  /// (the chatter rule at the limit of friction), 0 when every lock is within friction.
+  /// (the chatter rule at the limit of friction) by more than lift_off_tolerance of all
+  /// contact force, 0 when every lock is within friction or beyond it by a negligible force.
   double lock_excess = 0.0;
 };
 
@@ -404,6 +405,9 @@ private:
   int last_changed_ = 0;
   bool hold_shear_ = false;
   double held_open_penetration_ = 0.0; ///< deepest a contact held open may penetrate, m
+  /// update_modes(): (shear - limit, shear / limit) of each lock held beyond its friction
+  /// limit (kept for its storage)
+  std::vector<std::pair<double, double>> held_beyond_;
   /// Rounding of the coordinates of the step, m: gaps and motions within it change no mode.
   double rounding_ = 0.0;
   ContactCounters counters_;
