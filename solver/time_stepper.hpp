@@ -91,7 +91,7 @@ struct StepperCounters {
   long augmentations = 0;
   /// Steps that ended with a contact held locked beyond its friction limit by the chatter
   /// rule (ModeUpdate::lock_excess), and the largest shear over limit among them (0: Coulomb's
-  /// law held at every contact at the end of every step).
+  /// law held at every contact at the end of every step, to a negligible force).
   long locks_beyond_friction = 0;
   double max_lock_excess = 0.0;
   /// Wall time of each part of the steps so far, s (bench/step_bench.cpp and
