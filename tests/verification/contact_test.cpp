@@ -548,6 +548,31 @@ TEST(Stack, FacesTouchingWithoutForceKeepTheirModeAndSprings) {
   EXPECT_EQ(residual, 0.0);
 }
 
+/// The row of four DDA blocks on a base (testing::row_of_blocks_on_a_base) with its contacts
+/// found (friction 30 degrees, penalty 40 E), and step displacements that move the four
+/// blocks rigidly: pressed @p depth into the base and pushed @p along it.
+struct RowOnABase {
+  testing::Setup s = testing::row_of_blocks_on_a_base(ElementKind::dda);
+  std::unique_ptr<ContactSystem> contact =
+      contact_for(s.model, 40.0 * s.model.materials[0].young, {30.0 * pi / 180.0, 0.0, 0.0});
+  int base =
+      s.model.elements[static_cast<std::size_t>(s.model.find_element({1002.0, -500.5}, 1e-9))]
+          .block;
+
+  RowOnABase() { contact->begin_step(s.model, 1e-2); }
+
+  [[nodiscard]] Eigen::VectorXd moved(double depth, double along) const {
+    Eigen::VectorXd raw = Eigen::VectorXd::Zero(s.model.n_dofs());
+    for (int k = 0; k < s.model.n_covers(); ++k) {
+      if (s.model.covers[static_cast<std::size_t>(k)].block != base) {
+        raw(s.model.dof(k, 0)) = along;
+        raw(s.model.dof(k, 1)) = -depth;
+      }
+    }
+    return raw;
+  }
+};
+
 TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlides) {
   // The chatter rule at the limit of friction (docs/formulation.md, "Chatter rule"): a contact
   // that has switched between lock and slide three times in a step is held locked for the
@@ -558,23 +583,9 @@ TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlide
   // The row of four DDA blocks on a base, moved by prescribed solves: pressed 0.1 mm into
   // the base and pushed 1 mm along it and back, twice (shear k 1 mm against a limit of
   // k 0.1 mm tan 30 degrees), then pressed and pushed once more, then pushed at a tie.
-  testing::Setup s = testing::row_of_blocks_on_a_base(ElementKind::dda);
-  auto contact =
-      contact_for(s.model, 40.0 * s.model.materials[0].young, {30.0 * pi / 180.0, 0.0, 0.0});
-  contact->begin_step(s.model, 1e-2);
-  const int base =
-      s.model.elements[static_cast<std::size_t>(s.model.find_element({1002.0, -500.5}, 1e-9))]
-          .block;
-  const auto moved = [&](double depth, double along) {
-    Eigen::VectorXd raw = Eigen::VectorXd::Zero(s.model.n_dofs());
-    for (int k = 0; k < s.model.n_covers(); ++k) {
-      if (s.model.covers[static_cast<std::size_t>(k)].block != base) {
-        raw(s.model.dof(k, 0)) = along;
-        raw(s.model.dof(k, 1)) = -depth;
-      }
-    }
-    return raw;
-  };
+  const RowOnABase row;
+  ContactSystem* contact = row.contact.get();
+  const Model& model = row.s.model;
   // Contacts in @p mode, of those that switched between lock and slide at least @p slips
   // times (the faces between blocks do not move: they never switch).
   const auto in_mode = [&](ContactMode mode, int slips) {
@@ -584,19 +595,19 @@ TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlide
     return n;
   };
   for (int twice = 0; twice < 2; ++twice) {
-    EXPECT_EQ(contact->update_modes(s.model, moved(1e-4, 1e-3)).lock_excess, 0.0);
+    EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, 1e-3)).lock_excess, 0.0);
     EXPECT_GT(in_mode(ContactMode::slide, 0), 0) << "the lock let go";
-    EXPECT_EQ(contact->update_modes(s.model, moved(1e-4, -1e-3)).lock_excess, 0.0);
+    EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, -1e-3)).lock_excess, 0.0);
     EXPECT_EQ(in_mode(ContactMode::slide, 0), 0) << "the slide turned back: it sticks";
   }
   const int chattered = in_mode(ContactMode::lock, 3);
   ASSERT_GT(chattered, 0);
   // Pressed and pushed again: held locked, and reported.
-  const ModeUpdate held = contact->update_modes(s.model, moved(1e-4, 1e-3));
+  const ModeUpdate held = contact->update_modes(model, row.moved(1e-4, 1e-3));
   EXPECT_EQ(in_mode(ContactMode::lock, 3), chattered);
   EXPECT_GT(held.lock_excess, 1.0);
   // Pushed at a tie: nothing presses, so nothing holds them.
-  const ModeUpdate tie = contact->update_modes(s.model, moved(0.0, 1e-3));
+  const ModeUpdate tie = contact->update_modes(model, row.moved(0.0, 1e-3));
   EXPECT_EQ(tie.lock_excess, 0.0);
   EXPECT_EQ(in_mode(ContactMode::slide, 3), chattered);
   std::printf("%d contacts chattered; held with %.3g times the friction limit; at a tie: %d "
@@ -610,28 +621,13 @@ TEST(Chatter, TheShearForceKeepsItsSignWhenALockSlips) {
   // Before 2026-11-28 a sliding point reported the force on the slave (the opposite sign).
   // The row of four DDA blocks on a base, pressed 0.1 mm: pushed 1 um along the base it stays
   // locked (shear k 1 um against a limit of k 0.1 mm tan 30 degrees), pushed 1 mm it slides.
-  testing::Setup s = testing::row_of_blocks_on_a_base(ElementKind::dda);
-  auto contact =
-      contact_for(s.model, 40.0 * s.model.materials[0].young, {30.0 * pi / 180.0, 0.0, 0.0});
-  contact->begin_step(s.model, 1e-2);
-  const int base =
-      s.model.elements[static_cast<std::size_t>(s.model.find_element({1002.0, -500.5}, 1e-9))]
-          .block;
-  const auto moved = [&](double along) {
-    Eigen::VectorXd raw = Eigen::VectorXd::Zero(s.model.n_dofs());
-    for (int k = 0; k < s.model.n_covers(); ++k) {
-      if (s.model.covers[static_cast<std::size_t>(k)].block != base) {
-        raw(s.model.dof(k, 0)) = along;
-        raw(s.model.dof(k, 1)) = -1e-4;
-      }
-    }
-    return raw;
-  };
-  (void)contact->update_modes(s.model, moved(1e-6));
+  const RowOnABase row;
+  ContactSystem* contact = row.contact.get();
+  (void)contact->update_modes(row.s.model, row.moved(1e-4, 1e-6));
   std::vector<double> locked;
   for (const ContactPoint& p : contact->points())
     locked.push_back(p.mode == ContactMode::lock ? p.shear_force : 0.0);
-  (void)contact->update_modes(s.model, moved(1e-3));
+  (void)contact->update_modes(row.s.model, row.moved(1e-4, 1e-3));
   int slid = 0;
   for (std::size_t i = 0; i < locked.size(); ++i) {
     const ContactPoint& p = contact->points()[i];
