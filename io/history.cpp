@@ -78,7 +78,7 @@ std::string history_header(std::span<const std::string> monitor_names) {
     }
   }
   // Columns added after the first release go last: readers that count columns keep working.
-  header += ",load_work,step_cuts,max_penetration";
+  header += ",load_work,step_cuts,max_penetration,lock_excess";
   return header;
 }
 
@@ -152,8 +152,8 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
     }
   }
   if (status >= 0)
-    written += status = std::fprintf(stream_, ",%.17g,%d,%.17g", report.load_work, report.step_cuts,
-                                     report.max_penetration);
+    written += status = std::fprintf(stream_, ",%.17g,%d,%.17g,%.17g", report.load_work,
+                                     report.step_cuts, report.max_penetration, report.lock_excess);
   if (status >= 0)
     bytes_ += static_cast<std::uintmax_t>(written) + 1;
   if (status < 0 || std::fputc('\n', stream_) == EOF || std::fflush(stream_) != 0)

@@ -744,6 +744,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     impl_->contact->end_step(model_, raw);
     report.contacts = impl_->contact->n_closed();
     report.max_penetration = impl_->contact->max_penetration();
+    report.lock_excess = lock_excess;
     if (lock_excess > 0.0) {
       ++counters_.locks_beyond_friction;
       counters_.max_lock_excess = std::max(counters_.max_lock_excess, lock_excess);

@@ -73,6 +73,9 @@ struct StepReport {
   double load_work = 0.0;
   /// Deepest penetration of a closed contact at the end of the step, m (0 without contact).
   double max_penetration = 0.0;
+  /// Largest shear over friction limit of a contact held locked beyond it at the end of the
+  /// step (ModeUpdate::lock_excess; 0: every lock within friction).
+  double lock_excess = 0.0;
 };
 
 /// Work counters, for summary.json (issue 8: "skip what the scene does not need").

@@ -145,7 +145,8 @@ std::vector<std::vector<double>> read_history(const fs::path& file, const std::s
 const std::string monitor_columns =
     "tip.x,tip.y,tip.ux,tip.uy,tip.vx,tip.vy,tip.sxx,tip.syy,tip.sxy";
 const std::string history_columns = "step,time,dt,open_close_iterations,contacts,kinetic_energy," +
-                                    monitor_columns + ",load_work,step_cuts,max_penetration";
+                                    monitor_columns +
+                                    ",load_work,step_cuts,max_penetration,lock_excess";
 
 // ---------------------------------------------------------------------------------------
 // The bundled example
@@ -215,7 +216,7 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
                             "block.syy,block.sxy";
   const auto rows = read_history(out / "history.csv",
                                  "step,time,dt,open_close_iterations,contacts,kinetic_energy," +
-                                     block + ",load_work,step_cuts,max_penetration");
+                                     block + ",load_work,step_cuts,max_penetration,lock_excess");
   ASSERT_FALSE(rows.empty());
   const std::vector<double>& last = rows.back();
   EXPECT_DOUBLE_EQ(last[1], 1.0);
@@ -401,10 +402,10 @@ TEST_F(Cli, OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) {
     const fs::path out = dir() / (std::string("out_") + model);
     const ProcessResult run = nmm({"run", case_path.string(), "-o", out.string(), "--quiet"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
-    const auto rows = read_history(out / "history.csv",
-                                   "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
-                                   "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
-                                   "block.syy,block.sxy,load_work,step_cuts,max_penetration");
+    const auto rows = read_history(
+        out / "history.csv", "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
+                             "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
+                             "block.syy,block.sxy,load_work,step_cuts,max_penetration,lock_excess");
     ASSERT_FALSE(rows.empty());
     const std::vector<double>& last = rows.back();
     EXPECT_DOUBLE_EQ(last[1], 0.5);
