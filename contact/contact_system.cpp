@@ -1132,22 +1132,14 @@ void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
       state.normal += p.normal_force;
       double anchor = p.anchor;
       if (p.mode == ContactMode::slide) {
-        // The next lock anchors where the slave point ends up on the edge, less the stretch of
-        // its spring at the friction force it slid with (the spring's zero is where the slip
-        // took it, its stretch what friction carried): a lock taking over in the next step
-        // starts with that force, not with none. Anchored at the slave point itself, every
-        // slide -> lock switch across a step dropped the contact's friction, and the body
-        // moved by a spring's stretch to take it up again: a wedge standing on its joint at
-        // 32 degrees, 2 degrees above its limit, chattered in 478 of 500 steps (locks held at
-        // up to 4.7 times their limit) and, when those locks were let go, ratcheted down its
-        // joint by that stretch every step (docs/formulation.md, "Anchors").
+        // The next lock anchors where the slave point ends up on the edge. (Less the stretch
+        // of its spring at the friction it slid with, sign N tan(phi) / p, a lock taking over
+        // would start with that force: tried, and not kept: docs/formulation.md, "Anchors".)
         const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
         const double l = (boundary_.position[at(boundary_.next[at(p.master)])] -
                           boundary_.position[at(p.master)])
                              .norm();
-        const double stretch =
-            p.stiffness > 0.0 ? p.slide_sign * friction_force(p) / p.stiffness : 0.0;
-        anchor = p.anchor + (k.s0 + k.tangential(raw) - stretch) / l;
+        anchor = p.anchor + (k.s0 + k.tangential(raw)) / l;
       }
       state.anchors.emplace_back(p.u, anchor);
     }
