@@ -539,6 +539,8 @@ const ElementShape& ContactSystem::shape(int element) const {
   return shapes_[at(shape_of_element_[at(element)])];
 }
 
+void ContactSystem::set_dynamic(bool dynamic) { dynamic_ = dynamic; }
+
 void ContactSystem::set_hold_shear(bool hold) {
   hold_shear_ = hold;
   if (!hold)
@@ -774,6 +776,7 @@ bool ContactSystem::contribution(const Model& model,
 ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd& raw) {
   ModeUpdate update;
   held_beyond_.clear();
+  held_against_.clear();
   // Friction consistency is judged on the whole system, by the work of friction in the step:
   // the work of the change of the friction forces since they were applied against the work
   // of all friction. A contact carrying a few newtons may change by a large fraction without
@@ -913,15 +916,19 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       breaks = lead.bonded;
     } else if (before == ContactMode::lock) {
       // A contact that has switched between lock and slide chatter_limit times in the step
-      // sits at the limit of friction (locked it needs more than friction, sliding it turns
-      // back against it): it stays locked for the rest of the step (a held slide could push
-      // along its motion and feed energy in; a lock only holds), and the step reports by how
-      // much it exceeds its limit (ModeUpdate::lock_excess). A lock without any friction
+      // sits at the limit of friction: locked it needs more than friction, sliding it turns
+      // back against it (the chatter rule, docs/formulation.md). In a static step it stays
+      // locked, and the step reports by how much it exceeds its limit (ModeUpdate::
+      // lock_excess): the excess leaves a state beyond Coulomb's law, but no motion. In a
+      // dynamic step it slides at its limit instead (below): a lock held beyond it acts on the
+      // bodies for the whole step, and the impulse stays in their velocities (in the
+      // 1000-block pile of bench/stress.py a lock held at 6.8 times its limit spun a settled
+      // block up to 17 rad/s and threw a top-row block 2 m up). A lock without any friction
       // limit is never held: with no normal force and no cohesion it slides freely, which
       // cannot chatter (a tunnel's faces at a tie were held with 0.42 MN of shear and no
-      // normal force; docs/formulation.md, "Chatter rule").
+      // normal force).
       if (std::abs(shear) > limit + noise && !hold_shear_) {
-        if (limit > 0.0 && lead.slips >= options_.chatter_limit) {
+        if (limit > 0.0 && lead.slips >= options_.chatter_limit && !dynamic_) {
           ++counters_.chatter_holds;
           held_beyond_.emplace_back(std::abs(shear) - limit, std::abs(shear) / limit);
         } else {
@@ -933,11 +940,18 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     } else if (motion * lead.slide_sign < -rounding_) {
       // The sliding reversed against its friction: it sticks. Without any friction or
       // cohesion nothing can hold it: it keeps sliding, the other way (a lock would let go
-      // at once and the two would alternate for ever).
-      if (limit > 0.0 && !hold_shear_)
+      // at once and the two would alternate for ever). In a dynamic step a contact at the
+      // chatter limit keeps sliding, its friction at the limit and in its direction: the
+      // force is Coulomb's, and what it does along a motion that turned back is reported
+      // (ModeUpdate::slide_feed).
+      if (limit > 0.0 && !hold_shear_ && dynamic_ && lead.slips >= options_.chatter_limit) {
+        ++counters_.chatter_holds;
+        held_against_.emplace_back(limit - cohesion, std::abs(motion));
+      } else if (limit > 0.0 && !hold_shear_) {
         after = ContactMode::lock;
-      else
+      } else {
         sign = motion > 0.0 ? 1 : -1;
+      }
     }
     // Chatter rule (docs/formulation.md): a contact that has switched between open and
     // closed chatter_limit times in the step lifts off whenever it is closed and penetrates
@@ -1104,6 +1118,12 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
   for (const auto& [excess, ratio] : held_beyond_) {
     if (excess > options_.lift_off_tolerance * total_normal)
       update.lock_excess = std::max(update.lock_excess, ratio);
+  }
+  // Held slides whose motion turned back: the work of their friction along it, where that
+  // friction is not negligible in the same sense.
+  for (const auto& [force, motion] : held_against_) {
+    if (force > options_.lift_off_tolerance * total_normal)
+      update.slide_feed += force * motion;
   }
   return update;
 }

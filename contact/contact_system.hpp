@@ -137,6 +137,11 @@ struct ModeUpdate {
   /// (the chatter rule at the limit of friction) by more than lift_off_tolerance of all
   /// contact force, 0 when every lock is within friction or beyond it by a negligible force.
   double lock_excess = 0.0;
+  /// Work of the friction of the contacts this update holds sliding at their limit (the
+  /// chatter rule in a dynamic step) along motions that turned back against it, J: what that
+  /// friction feeds in where Coulomb's law would stick; 0 when none turned back by more than
+  /// the rounding with a friction force above lift_off_tolerance of all contact force.
+  double slide_feed = 0.0;
 };
 
 /// Counters for summary.json and benchmarks.
@@ -218,6 +223,11 @@ public:
   /// While set, closed contacts lock and never slide (the initial equilibrium: the shear
   /// springs take what friction could not); for the step begun last.
   void set_hold_shear(bool hold);
+
+  /// Whether the step begun last is dynamic (its velocities carry on): a contact at the
+  /// chatter limit of friction then slides at its limit for the rest of the step instead of
+  /// being held locked beyond it (docs/formulation.md, "Chatter rule").
+  void set_dynamic(bool dynamic);
 
   /// Stores the closed contacts (and their anchors, forces, bonds) for the next step; to be
   /// called with the step's final displacement, before the model moves.
@@ -408,6 +418,10 @@ private:
   /// update_modes(): (shear - limit, shear / limit) of each lock held beyond its friction
   /// limit (kept for its storage)
   std::vector<std::pair<double, double>> held_beyond_;
+  /// update_modes(): (friction force, motion against it) of each contact held sliding at the
+  /// chatter limit whose motion turned back.
+  std::vector<std::pair<double, double>> held_against_;
+  bool dynamic_ = false;
   /// Rounding of the coordinates of the step, m: gaps and motions within it change no mode.
   double rounding_ = 0.0;
   ContactCounters counters_;

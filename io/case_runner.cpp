@@ -835,6 +835,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   result.max_penetration = summary.max_penetration;
   result.locks_beyond_friction = summary.counters.locks_beyond_friction;
   result.max_lock_excess = summary.counters.max_lock_excess;
+  result.slides_against_motion = summary.counters.slides_against_motion;
+  result.slide_feed_work = summary.counters.slide_feed_work;
   result.warnings = summary.warnings;
   return result;
 }

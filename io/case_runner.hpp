@@ -159,6 +159,10 @@ struct RunResult {
   /// shear over limit among them (StepperCounters).
   long locks_beyond_friction = 0;
   double max_lock_excess = 0.0;
+  /// Steps that ended with a contact held sliding at its friction limit against a motion that
+  /// turned back, and the work of that friction along those motions, J (StepperCounters).
+  long slides_against_motion = 0;
+  double slide_feed_work = 0.0;
   std::filesystem::path output_dir;
   /// Number of step files written.
   long output_steps = 0;

@@ -78,7 +78,7 @@ std::string history_header(std::span<const std::string> monitor_names) {
     }
   }
   // Columns added after the first release go last: readers that count columns keep working.
-  header += ",load_work,step_cuts,max_penetration,lock_excess";
+  header += ",load_work,step_cuts,max_penetration,lock_excess,slide_feed";
   return header;
 }
 
@@ -152,8 +152,9 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
     }
   }
   if (status >= 0)
-    written += status = std::fprintf(stream_, ",%.17g,%d,%.17g,%.17g", report.load_work,
-                                     report.step_cuts, report.max_penetration, report.lock_excess);
+    written += status =
+        std::fprintf(stream_, ",%.17g,%d,%.17g,%.17g,%.17g", report.load_work, report.step_cuts,
+                     report.max_penetration, report.lock_excess, report.slide_feed);
   if (status >= 0)
     bytes_ += static_cast<std::uintmax_t>(written) + 1;
   if (status < 0 || std::fputc('\n', stream_) == EOF || std::fflush(stream_) != 0)
@@ -265,6 +266,8 @@ std::string summary_json(const RunSummary& s) {
   counters.integer("plan_rebuilds", s.counters.plan_rebuilds);
   counters.integer("augmentations", s.counters.augmentations);
   counters.integer("locks_beyond_friction", s.counters.locks_beyond_friction);
+  counters.integer("slides_against_motion", s.counters.slides_against_motion);
+  counters.number("slide_feed_work", s.counters.slide_feed_work);
   // Where the steps' time went (StepperCounters): the parts add up to seconds_steps.
   const StepperCounters& c = s.counters;
   counters.seconds("seconds_steps", c.seconds_steps);

@@ -108,6 +108,14 @@ void write_closing_summary(std::ostream& out, const RunResult& result, long step
         << " ended with a contact held locked beyond its friction limit (up to "
         << number_text(result.max_lock_excess, 3) << " times it; the chatter rule)\n";
   }
+  if (result.slides_against_motion > 0) {
+    out << "  friction: " << result.slides_against_motion
+        << (result.slides_against_motion == 1 ? " step" : " steps")
+        << " ended with a contact held sliding at its friction limit against a motion that "
+           "turned back ("
+        << number_text(result.slide_feed_work, 3)
+        << " J of friction work along it; the chatter rule)\n";
+  }
   if (result.warnings.empty()) {
     out << "  warnings: none\n";
   } else {

@@ -345,13 +345,16 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   if (impl_->contact) {
     impl_->contact->begin_step(model_, limit);
     impl_->contact->set_hold_shear(equilibrium);
+    impl_->contact->set_dynamic(dynamic);
     ++counters_.contact_searches;
   }
   lap(clock, counters_.seconds_detection);
   double work = 0.0;        // of the loads in the step (its last try)
   double lock_excess = 0.0; // of the last try's converged update (ModeUpdate::lock_excess)
+  double slide_feed = 0.0;  // the same, ModeUpdate::slide_feed
   for (int cut = 0;; ++cut) {
     lock_excess = 0.0;
+    slide_feed = 0.0;
     lap(clock, counters_.seconds_step_control); // the checks of a try that was cut
     if (cut > 0 && impl_->contact)
       impl_->contact->restart_step();
@@ -623,6 +626,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           warn_penetration(impl_->contact->max_penetration(), contact, false);
         converged = true;
         lock_excess = update.lock_excess;
+        slide_feed = update.slide_feed;
         break;
       }
       assemble = update.changes > 0;
@@ -749,6 +753,11 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       ++counters_.locks_beyond_friction;
       counters_.max_lock_excess = std::max(counters_.max_lock_excess, lock_excess);
     }
+    report.slide_feed = slide_feed;
+    if (slide_feed > 0.0) {
+      ++counters_.slides_against_motion;
+      counters_.slide_feed_work += slide_feed;
+    }
   }
   model_.accumulate_stress(raw);
   ++counters_.stress_updates;
@@ -840,9 +849,16 @@ std::vector<double*> time_counters(StepperCounters& c) {
 }
 
 std::vector<long*> work_counters(StepperCounters& c) {
-  return {&c.steps,          &c.step_cuts,     &c.contact_searches,
-          &c.pattern_builds, &c.plan_rebuilds, &c.stress_updates,
-          &c.friction_terms, &c.augmentations, &c.locks_beyond_friction};
+  return {&c.steps,
+          &c.step_cuts,
+          &c.contact_searches,
+          &c.pattern_builds,
+          &c.plan_rebuilds,
+          &c.stress_updates,
+          &c.friction_terms,
+          &c.augmentations,
+          &c.locks_beyond_friction,
+          &c.slides_against_motion};
 }
 
 } // namespace
@@ -859,6 +875,7 @@ void TimeStepper::save_state(StateWriter& out) const {
   for (const double* c : time_counters(counters))
     out.put(*c);
   out.put(counters.max_lock_excess);
+  out.put(counters.slide_feed_work);
   const SolverCounters solver = solver_counters();
   out.put(static_cast<std::int64_t>(solver.symbolic_analyses));
   out.put(static_cast<std::int64_t>(solver.factorizations));
@@ -916,6 +933,7 @@ void TimeStepper::load_state(StateReader& in) {
   for (double* c : time_counters(counters_))
     *c = in.real();
   counters_.max_lock_excess = in.real();
+  counters_.slide_feed_work = in.real();
   impl_->restored_counters.symbolic_analyses = static_cast<long>(in.integer());
   impl_->restored_counters.factorizations = static_cast<long>(in.integer());
   impl_->restored_counters.solves = static_cast<long>(in.integer());

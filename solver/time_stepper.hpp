@@ -76,6 +76,10 @@ struct StepReport {
   /// Largest shear over friction limit of a contact held locked beyond it at the end of the
   /// step (ModeUpdate::lock_excess; 0: every lock within friction).
   double lock_excess = 0.0;
+  /// Work of the friction of contacts held sliding at their limit by the chatter rule along
+  /// motions that turned back against it in the step (ModeUpdate::slide_feed), J (per metre
+  /// in plane strain); 0: friction opposed every slide.
+  double slide_feed = 0.0;
 };
 
 /// Work counters, for summary.json (issue 8: "skip what the scene does not need").
@@ -97,6 +101,11 @@ struct StepperCounters {
   /// law held at every contact at the end of every step, to a negligible force).
   long locks_beyond_friction = 0;
   double max_lock_excess = 0.0;
+  /// Steps of a dynamic analysis that ended with a contact held sliding at its friction
+  /// limit against a motion that turned back (StepReport::slide_feed), and the work that
+  /// friction did along those motions over the run, J.
+  long slides_against_motion = 0;
+  double slide_feed_work = 0.0;
   /// Wall time of each part of the steps so far, s (bench/step_bench.cpp and
   /// bench/block_bench.py report them). The parts are laps of one clock through a step, so
   /// they add up to seconds_steps (every try of a cut step included).

@@ -146,7 +146,7 @@ const std::string monitor_columns =
     "tip.x,tip.y,tip.ux,tip.uy,tip.vx,tip.vy,tip.sxx,tip.syy,tip.sxy";
 const std::string history_columns = "step,time,dt,open_close_iterations,contacts,kinetic_energy," +
                                     monitor_columns +
-                                    ",load_work,step_cuts,max_penetration,lock_excess";
+                                    ",load_work,step_cuts,max_penetration,lock_excess,slide_feed";
 
 // ---------------------------------------------------------------------------------------
 // The bundled example
@@ -214,9 +214,9 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
 
   const std::string block = "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
                             "block.syy,block.sxy";
-  const auto rows = read_history(out / "history.csv",
-                                 "step,time,dt,open_close_iterations,contacts,kinetic_energy," +
-                                     block + ",load_work,step_cuts,max_penetration,lock_excess");
+  const auto rows = read_history(
+      out / "history.csv", "step,time,dt,open_close_iterations,contacts,kinetic_energy," + block +
+                               ",load_work,step_cuts,max_penetration,lock_excess,slide_feed");
   ASSERT_FALSE(rows.empty());
   const std::vector<double>& last = rows.back();
   EXPECT_DOUBLE_EQ(last[1], 1.0);
@@ -403,9 +403,10 @@ TEST_F(Cli, OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) {
     const ProcessResult run = nmm({"run", case_path.string(), "-o", out.string(), "--quiet"});
     ASSERT_EQ(run.exit_code, 0) << run.err;
     const auto rows = read_history(
-        out / "history.csv", "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
-                             "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
-                             "block.syy,block.sxy,load_work,step_cuts,max_penetration,lock_excess");
+        out / "history.csv",
+        "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
+        "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
+        "block.syy,block.sxy,load_work,step_cuts,max_penetration,lock_excess,slide_feed");
     ASSERT_FALSE(rows.empty());
     const std::vector<double>& last = rows.back();
     EXPECT_DOUBLE_EQ(last[1], 0.5);

@@ -561,6 +561,15 @@ struct RowOnABase {
 
   RowOnABase() { contact->begin_step(s.model, 1e-2); }
 
+  /// Contacts in @p mode, of those that switched between lock and slide at least @p slips
+  /// times (the faces between blocks do not move: they never switch).
+  [[nodiscard]] int in_mode(ContactMode mode, int slips) const {
+    int n = 0;
+    for (const ContactPoint& p : contact->points())
+      n += p.mode == mode && p.slips >= slips ? 1 : 0;
+    return n;
+  }
+
   [[nodiscard]] Eigen::VectorXd moved(double depth, double along) const {
     Eigen::VectorXd raw = Eigen::VectorXd::Zero(s.model.n_dofs());
     for (int k = 0; k < s.model.n_covers(); ++k) {
@@ -574,9 +583,9 @@ struct RowOnABase {
 };
 
 TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlides) {
-  // The chatter rule at the limit of friction (docs/formulation.md, "Chatter rule"): a contact
-  // that has switched between lock and slide three times in a step is held locked for the
-  // rest of the step, and the update reports its shear over its friction limit
+  // The chatter rule at the limit of friction in a static step (docs/formulation.md, "Chatter
+  // rule"): a contact that has switched between lock and slide three times in a step is held
+  // locked for the rest of the step, and the update reports its shear over its friction limit
   // (ModeUpdate::lock_excess, gathered in summary.json). A lock whose limit is nil (its
   // faces at a tie, no spring pressing, no cohesion) is never held: it slides, as friction
   // without a normal force allows (the tunnel of examples/12 held such faces with 0.42 MN).
@@ -586,14 +595,7 @@ TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlide
   const RowOnABase row;
   ContactSystem* contact = row.contact.get();
   const Model& model = row.s.model;
-  // Contacts in @p mode, of those that switched between lock and slide at least @p slips
-  // times (the faces between blocks do not move: they never switch).
-  const auto in_mode = [&](ContactMode mode, int slips) {
-    int n = 0;
-    for (const ContactPoint& p : contact->points())
-      n += p.mode == mode && p.slips >= slips ? 1 : 0;
-    return n;
-  };
+  const auto in_mode = [&](ContactMode mode, int slips) { return row.in_mode(mode, slips); };
   for (int twice = 0; twice < 2; ++twice) {
     EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, 1e-3)).lock_excess, 0.0);
     EXPECT_GT(in_mode(ContactMode::slide, 0), 0) << "the lock let go";
@@ -613,6 +615,56 @@ TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlide
   std::printf("%d contacts chattered; held with %.3g times the friction limit; at a tie: %d "
               "sliding\n",
               chattered, held.lock_excess, in_mode(ContactMode::slide, 3));
+}
+
+TEST(Chatter, InADynamicStepAContactAtTheFrictionLimitSlidesAtItAndWhatItFeedsInIsReported) {
+  // The chatter rule at the limit of friction in a dynamic step (docs/formulation.md,
+  // "Chatter rule"): a contact that has switched between lock and slide three times keeps
+  // sliding for the rest of the step with its friction at the limit, in its direction, and is
+  // never held locked beyond it (a lock held at 6.8 times its limit spun a block of the
+  // 1000-block pile up to 17 rad/s). Where its motion turns back, its friction pushes along
+  // the motion: the update reports that work (ModeUpdate::slide_feed). The row of four DDA
+  // blocks on a base, pressed 0.1 mm into it and pushed 1 mm along it and back, twice, then
+  // along again; the friction force is k 0.1 mm tan 30 degrees, the motion back 1 mm, so the
+  // work fed is sum(k) 1e-4 m tan 30 deg 1e-3 m. Tolerance 1e-9 relative: the gaps and
+  // motions of a prescribed translation are exact to the rounding of coordinates of 1e3 m
+  // (1e-13 m against 1e-4 m).
+  const RowOnABase row;
+  ContactSystem* contact = row.contact.get();
+  contact->set_dynamic(true);
+  const Model& model = row.s.model;
+  const auto in_mode = [&](ContactMode mode, int slips) { return row.in_mode(mode, slips); };
+  EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, 1e-3)).slide_feed, 0.0);
+  EXPECT_GT(in_mode(ContactMode::slide, 1), 0) << "the lock let go";
+  EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, -1e-3)).slide_feed, 0.0);
+  EXPECT_EQ(in_mode(ContactMode::slide, 0), 0) << "the slide turned back: it sticks";
+  const ModeUpdate third = contact->update_modes(model, row.moved(1e-4, 1e-3));
+  EXPECT_EQ(third.lock_excess, 0.0) << "the third switch lets it slide, as before";
+  const int chattered = in_mode(ContactMode::slide, 3);
+  ASSERT_GT(chattered, 0);
+  // Turned back again: it keeps sliding at its limit, in its direction, and reports the work
+  // of its friction along the motion back.
+  const ModeUpdate back = contact->update_modes(model, row.moved(1e-4, -1e-3));
+  EXPECT_EQ(in_mode(ContactMode::slide, 3), chattered);
+  EXPECT_EQ(in_mode(ContactMode::lock, 3), 0) << "nothing held locked";
+  EXPECT_EQ(back.lock_excess, 0.0);
+  double stiffness = 0.0;
+  double friction = 0.0;
+  for (const ContactPoint& p : contact->points()) {
+    if (p.mode == ContactMode::slide && p.slips >= 3) {
+      stiffness += p.stiffness;
+      friction += std::abs(p.shear_force);
+    }
+  }
+  const double limit = stiffness * 1e-4 * std::tan(30.0 * pi / 180.0);
+  EXPECT_NEAR(friction, limit, 1e-9 * limit) << "Coulomb's force";
+  EXPECT_NEAR(back.slide_feed, limit * 1e-3, 1e-9 * limit * 1e-3);
+  // Along its slide again: friction opposes the motion, nothing is fed.
+  const ModeUpdate along = contact->update_modes(model, row.moved(1e-4, 1e-3));
+  EXPECT_EQ(along.slide_feed, 0.0);
+  EXPECT_EQ(in_mode(ContactMode::slide, 3), chattered);
+  std::printf("%d contacts chattered; sliding at the limit %.4g N, %.4g J fed on the way back\n",
+              chattered, friction, back.slide_feed);
 }
 
 TEST(Chatter, TheShearForceKeepsItsSignWhenALockSlips) {

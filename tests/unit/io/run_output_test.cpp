@@ -34,9 +34,9 @@ TEST(History, HeaderHasTheContractColumnsThenNineColumnsPerMonitorThenTheWorkOfT
             "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
             "crest.x,crest.y,crest.ux,crest.uy,crest.vx,crest.vy,crest.sxx,crest.syy,crest.sxy,"
             "toe.x,toe.y,toe.ux,toe.uy,toe.vx,toe.vy,toe.sxx,toe.syy,toe.sxy,load_work,step_cuts,"
-            "max_penetration,lock_excess");
+            "max_penetration,lock_excess,slide_feed");
   EXPECT_EQ(history_header({}), "step,time,dt,open_close_iterations,contacts,kinetic_energy,load_"
-                                "work,step_cuts,max_penetration,lock_excess");
+                                "work,step_cuts,max_penetration,lock_excess,slide_feed");
 }
 
 TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
@@ -54,6 +54,7 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   report.step_cuts = 3;
   report.max_penetration = 2.5e-7;
   report.lock_excess = 1.0 + 1.0 / 3.0;
+  report.slide_feed = 0.1 + 0.7;
   MonitorValues m;
   m.x = std::numbers::pi;
   m.sxy = -2.5e9;
@@ -70,11 +71,12 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   std::istringstream cells(row);
   for (std::string cell; std::getline(cells, cell, ',');)
     fields.push_back(cell);
-  ASSERT_EQ(fields.size(), 6u + 9u + 4u);
+  ASSERT_EQ(fields.size(), 6u + 9u + 5u);
   EXPECT_EQ(std::stod(fields[15]), -0.1);
   EXPECT_EQ(fields[16], "3");
   EXPECT_EQ(std::stod(fields[17]), 2.5e-7);
   EXPECT_EQ(std::stod(fields[18]), 1.0 + 1.0 / 3.0);
+  EXPECT_EQ(std::stod(fields[19]), 0.1 + 0.7);
   EXPECT_EQ(fields[0], "7");
   EXPECT_EQ(std::stod(fields[1]), 0.1 + 0.2);
   EXPECT_EQ(std::stod(fields[2]), 1.0 / 3.0);
