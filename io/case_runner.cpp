@@ -792,6 +792,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       }
       const StepReport report = stepper.step(end_time);
       step = report.step;
+      result.load_work = report.load_work;
       summary.max_penetration = std::max(summary.max_penetration, report.max_penetration);
       history->write_row(report, analysis.monitor_values());
       if (step % every == 0)

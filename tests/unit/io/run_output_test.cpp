@@ -335,6 +335,29 @@ TEST(Progress, ClosingSummarySaysStatusStepsWarningsAndWhereTheOutputsAre) {
         "max contact penetration 3.25e-06 m", "warnings: 1", "case.toml:4: something",
         "results/case.pvd", "results/history.csv", "results/summary.json"})
     EXPECT_NE(text.find(part), std::string::npos) << part << " in\n" << text;
+  EXPECT_EQ(text.find("friction:"), std::string::npos) << "no hold, no line";
+}
+
+TEST(Progress, ClosingSummarySaysWhatTheChatterRuleHeldAtTheLimitOfFriction) {
+  // Never silent (docs/formulation.md, "Chatter rule"): locks held beyond friction in static
+  // steps, and the friction of slides held at the limit along motions that turned back in
+  // dynamic ones, with its share of the work of the loads.
+  RunResult result;
+  result.steps = 500;
+  result.locks_beyond_friction = 8;
+  result.max_lock_excess = 1.35;
+  result.slides_against_motion = 91;
+  result.slide_feed_work = 2.0e4;
+  result.load_work = 5.16e5;
+  std::ostringstream out;
+  write_closing_summary(out, result, 500);
+  const std::string text = out.str();
+  for (const char* part : {"friction: 8 steps ended with a contact held locked beyond its "
+                           "friction limit (up to 1.35 times it",
+                           "friction: 91 steps ended with a contact held sliding at its friction "
+                           "limit against a motion that turned back (2e+04 J of friction work "
+                           "along it, 3.9% of the work of the loads"})
+    EXPECT_NE(text.find(part), std::string::npos) << part << " in\n" << text;
 }
 
 } // namespace
