@@ -477,6 +477,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   }
   counters_.points += static_cast<long>(points_.size());
   last_changed_ = 0;
+  holds_ = {};
   save(start_);
   has_converged_ = false;
   kinematics_cache_.resize(points_.size() + 3 * groups_.size());
@@ -500,6 +501,7 @@ void ContactSystem::save(State& state) const {
   state.points = points_;
   state.broken = broken_;
   state.bonds_broken = counters_.bonds_broken;
+  state.holds = holds_;
 }
 
 void ContactSystem::restore(const State& state) {
@@ -507,6 +509,7 @@ void ContactSystem::restore(const State& state) {
   points_ = state.points;
   broken_ = state.broken;
   counters_.bonds_broken = state.bonds_broken;
+  holds_ = state.holds;
   last_changed_ = 0;
 }
 
@@ -1125,6 +1128,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     if (force > options_.lift_off_tolerance * total_normal)
       update.slide_feed += force * motion;
   }
+  holds_ = {update.lock_excess, update.slide_feed};
   return update;
 }
 

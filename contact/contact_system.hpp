@@ -144,6 +144,13 @@ struct ModeUpdate {
   double slide_feed = 0.0;
 };
 
+/// What the chatter rule holds at the limit of friction in a state of the contacts
+/// (ModeUpdate::lock_excess and slide_feed of the update that made it).
+struct FrictionHolds {
+  double lock_excess = 0.0;
+  double slide_feed = 0.0;
+};
+
 /// Counters for summary.json and benchmarks.
 struct ContactCounters {
   long points = 0; ///< summed over steps
@@ -223,6 +230,11 @@ public:
   /// While set, closed contacts lock and never slide (the initial equilibrium: the shear
   /// springs take what friction could not); for the step begun last.
   void set_hold_shear(bool hold);
+
+  /// What the chatter rule holds at the limit of friction in the contacts as they are: those
+  /// of the last update_modes(), or of the converged solve that augment() or
+  /// back_to_converged() went back to; none after begin_step() or restart_step().
+  [[nodiscard]] FrictionHolds holds() const noexcept { return holds_; }
 
   /// Whether the step begun last is dynamic (its velocities carry on): a contact at the
   /// chatter limit of friction then slides at its limit for the rest of the step instead of
@@ -402,6 +414,7 @@ private:
     std::vector<ContactPoint> points;
     std::unordered_map<std::uint64_t, bool> broken;
     long bonds_broken = 0;
+    FrictionHolds holds;
   };
   void save(State& state) const;
   void restore(const State& state);
@@ -421,6 +434,7 @@ private:
   /// update_modes(): (friction force, motion against it) of each contact held sliding at the
   /// chatter limit whose motion turned back.
   std::vector<std::pair<double, double>> held_against_;
+  FrictionHolds holds_; ///< holds()
   bool dynamic_ = false;
   /// Rounding of the coordinates of the step, m: gaps and motions within it change no mode.
   double rounding_ = 0.0;

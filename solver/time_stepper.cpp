@@ -349,12 +349,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     ++counters_.contact_searches;
   }
   lap(clock, counters_.seconds_detection);
-  double work = 0.0;        // of the loads in the step (its last try)
-  double lock_excess = 0.0; // of the last try's converged update (ModeUpdate::lock_excess)
-  double slide_feed = 0.0;  // the same, ModeUpdate::slide_feed
+  double work = 0.0; // of the loads in the step (its last try)
   for (int cut = 0;; ++cut) {
-    lock_excess = 0.0;
-    slide_feed = 0.0;
     lap(clock, counters_.seconds_step_control); // the checks of a try that was cut
     if (cut > 0 && impl_->contact)
       impl_->contact->restart_step();
@@ -625,8 +621,6 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         if (augmentations > 0) // the passes ran out or stopped shrinking it: say so once
           warn_penetration(impl_->contact->max_penetration(), contact, false);
         converged = true;
-        lock_excess = update.lock_excess;
-        slide_feed = update.slide_feed;
         break;
       }
       assemble = update.changes > 0;
@@ -748,15 +742,17 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     impl_->contact->end_step(model_, raw);
     report.contacts = impl_->contact->n_closed();
     report.max_penetration = impl_->contact->max_penetration();
-    report.lock_excess = lock_excess;
-    if (lock_excess > 0.0) {
+    // Of the solve the step ends on (after augmented-Lagrange passes, the converged one kept).
+    const FrictionHolds held = impl_->contact->holds();
+    report.lock_excess = held.lock_excess;
+    report.slide_feed = held.slide_feed;
+    if (held.lock_excess > 0.0) {
       ++counters_.locks_beyond_friction;
-      counters_.max_lock_excess = std::max(counters_.max_lock_excess, lock_excess);
+      counters_.max_lock_excess = std::max(counters_.max_lock_excess, held.lock_excess);
     }
-    report.slide_feed = slide_feed;
-    if (slide_feed > 0.0) {
+    if (held.slide_feed > 0.0) {
       ++counters_.slides_against_motion;
-      counters_.slide_feed_work += slide_feed;
+      counters_.slide_feed_work += held.slide_feed;
     }
   }
   model_.accumulate_stress(raw);

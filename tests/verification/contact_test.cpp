@@ -659,10 +659,17 @@ TEST(Chatter, InADynamicStepAContactAtTheFrictionLimitSlidesAtItAndWhatItFeedsIn
   const double limit = stiffness * 1e-4 * std::tan(30.0 * pi / 180.0);
   EXPECT_NEAR(friction, limit, 1e-9 * limit) << "Coulomb's force";
   EXPECT_NEAR(back.slide_feed, limit * 1e-3, 1e-9 * limit * 1e-3);
+  // The step reports what the contacts it ends on hold (ContactSystem::holds()): a cut step
+  // starts again from none.
+  EXPECT_EQ(contact->holds().slide_feed, back.slide_feed);
   // Along its slide again: friction opposes the motion, nothing is fed.
   const ModeUpdate along = contact->update_modes(model, row.moved(1e-4, 1e-3));
   EXPECT_EQ(along.slide_feed, 0.0);
   EXPECT_EQ(in_mode(ContactMode::slide, 3), chattered);
+  (void)contact->update_modes(model, row.moved(1e-4, -1e-3));
+  EXPECT_GT(contact->holds().slide_feed, 0.0);
+  contact->restart_step();
+  EXPECT_EQ(contact->holds().slide_feed, 0.0);
   std::printf("%d contacts chattered; sliding at the limit %.4g N, %.4g J fed on the way back\n",
               chattered, friction, back.slide_feed);
 }
