@@ -36,8 +36,9 @@ and checks nmm's own history.csv and summary.json against the criterion of each 
   less the cut steps); max_step_displacement 2 cm, so contacts are found 4 cm away (the
   gaps are 3 cm; the fastest block moves 1 cm a step); a step file every 10 steps.
   --quick: 10 x 10 blocks, 500 steps. --seed N: other random sites (the recorded runs use 1;
-  the settling is chaotic, so a few seeds show the spread of every figure). The gaps close from the floor up: the top row falls
-  20 x 3 cm + 3 cm (0.63 m, 0.36 s) and lands at 3.5 m/s. Criteria:
+  the settling is chaotic, so a few seeds show the spread of every figure). The gaps close
+  from the floor up: the top row falls 20 x 3 cm + 3 cm (0.63 m, 0.36 s) and lands at
+  3.5 m/s. Criteria:
   - completes, every row of history.csv finite;
   - at rest: the kinetic energy at the end below 1e-3 of its peak (the mean speed below 3%
     of its peak);

@@ -595,26 +595,25 @@ TEST(Chatter, ALockAtTheFrictionLimitIsHeldAndReportedAndOneWithoutAnyLimitSlide
   const RowOnABase row;
   ContactSystem* contact = row.contact.get();
   const Model& model = row.s.model;
-  const auto in_mode = [&](ContactMode mode, int slips) { return row.in_mode(mode, slips); };
   for (int twice = 0; twice < 2; ++twice) {
     EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, 1e-3)).lock_excess, 0.0);
-    EXPECT_GT(in_mode(ContactMode::slide, 0), 0) << "the lock let go";
+    EXPECT_GT(row.in_mode(ContactMode::slide, 0), 0) << "the lock let go";
     EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, -1e-3)).lock_excess, 0.0);
-    EXPECT_EQ(in_mode(ContactMode::slide, 0), 0) << "the slide turned back: it sticks";
+    EXPECT_EQ(row.in_mode(ContactMode::slide, 0), 0) << "the slide turned back: it sticks";
   }
-  const int chattered = in_mode(ContactMode::lock, 3);
+  const int chattered = row.in_mode(ContactMode::lock, 3);
   ASSERT_GT(chattered, 0);
   // Pressed and pushed again: held locked, and reported.
   const ModeUpdate held = contact->update_modes(model, row.moved(1e-4, 1e-3));
-  EXPECT_EQ(in_mode(ContactMode::lock, 3), chattered);
+  EXPECT_EQ(row.in_mode(ContactMode::lock, 3), chattered);
   EXPECT_GT(held.lock_excess, 1.0);
   // Pushed at a tie: nothing presses, so nothing holds them.
   const ModeUpdate tie = contact->update_modes(model, row.moved(0.0, 1e-3));
   EXPECT_EQ(tie.lock_excess, 0.0);
-  EXPECT_EQ(in_mode(ContactMode::slide, 3), chattered);
+  EXPECT_EQ(row.in_mode(ContactMode::slide, 3), chattered);
   std::printf("%d contacts chattered; held with %.3g times the friction limit; at a tie: %d "
               "sliding\n",
-              chattered, held.lock_excess, in_mode(ContactMode::slide, 3));
+              chattered, held.lock_excess, row.in_mode(ContactMode::slide, 3));
 }
 
 TEST(Chatter, InADynamicStepAContactAtTheFrictionLimitSlidesAtItAndWhatItFeedsInIsReported) {
@@ -633,20 +632,19 @@ TEST(Chatter, InADynamicStepAContactAtTheFrictionLimitSlidesAtItAndWhatItFeedsIn
   ContactSystem* contact = row.contact.get();
   contact->set_dynamic(true);
   const Model& model = row.s.model;
-  const auto in_mode = [&](ContactMode mode, int slips) { return row.in_mode(mode, slips); };
   EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, 1e-3)).slide_feed, 0.0);
-  EXPECT_GT(in_mode(ContactMode::slide, 1), 0) << "the lock let go";
+  EXPECT_GT(row.in_mode(ContactMode::slide, 1), 0) << "the lock let go";
   EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, -1e-3)).slide_feed, 0.0);
-  EXPECT_EQ(in_mode(ContactMode::slide, 0), 0) << "the slide turned back: it sticks";
+  EXPECT_EQ(row.in_mode(ContactMode::slide, 0), 0) << "the slide turned back: it sticks";
   const ModeUpdate third = contact->update_modes(model, row.moved(1e-4, 1e-3));
   EXPECT_EQ(third.lock_excess, 0.0) << "the third switch lets it slide, as before";
-  const int chattered = in_mode(ContactMode::slide, 3);
+  const int chattered = row.in_mode(ContactMode::slide, 3);
   ASSERT_GT(chattered, 0);
   // Turned back again: it keeps sliding at its limit, in its direction, and reports the work
   // of its friction along the motion back.
   const ModeUpdate back = contact->update_modes(model, row.moved(1e-4, -1e-3));
-  EXPECT_EQ(in_mode(ContactMode::slide, 3), chattered);
-  EXPECT_EQ(in_mode(ContactMode::lock, 3), 0) << "nothing held locked";
+  EXPECT_EQ(row.in_mode(ContactMode::slide, 3), chattered);
+  EXPECT_EQ(row.in_mode(ContactMode::lock, 3), 0) << "nothing held locked";
   EXPECT_EQ(back.lock_excess, 0.0);
   double stiffness = 0.0;
   double friction = 0.0;
@@ -665,7 +663,7 @@ TEST(Chatter, InADynamicStepAContactAtTheFrictionLimitSlidesAtItAndWhatItFeedsIn
   // Along its slide again: friction opposes the motion, nothing is fed.
   const ModeUpdate along = contact->update_modes(model, row.moved(1e-4, 1e-3));
   EXPECT_EQ(along.slide_feed, 0.0);
-  EXPECT_EQ(in_mode(ContactMode::slide, 3), chattered);
+  EXPECT_EQ(row.in_mode(ContactMode::slide, 3), chattered);
   (void)contact->update_modes(model, row.moved(1e-4, -1e-3));
   EXPECT_GT(contact->holds().slide_feed, 0.0);
   contact->restart_step();
