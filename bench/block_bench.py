@@ -5,11 +5,12 @@
     python3 bench/block_bench.py [--nmm build/release/nmm] [--work build/block-bench]
                                  [--sizes 100,1000,10000] [--models dda,vem,nmm]
                                  [--steps 100:20,1000:5,10000:3] [--no-wall] [--no-rock-mass]
-                                 [--threads N]
+                                 [--threads N] [--solvers cholmod,pcg]
 
 For every size N and model it writes the rock mass of bench/rock_mass.py (--blocks N --model M
 --steps K --open-close-max 20, seed 1, default joint sets: the same joints for the three
-models), runs `nmm run CASE --quiet` on it and reads the step times that nmm itself measured
+models), runs `nmm run CASE --quiet` on it with each of --solvers ([analysis] solver; a run
+with "pcg" is listed as model "dda/pcg" and so on) and reads the step times that nmm measured
 (summary.json "counters", docs/output.md): the parts are laps of one clock through every
 step, so they add up to the step time. Then the 70-block wall of examples/13_block_wall_70
 (dda and vem, with open_close_max = 20 as the case has it, added if it does not), run to
@@ -83,6 +84,8 @@ def figures(label, kind, blocks, summary, contacts, elapsed, load):
         "unknowns": summary["unknowns"],
         "contacts": contacts,
         "factorisations": c["factorizations"],
+        "cg_per_solve": c.get("cg_iterations", 0) / max(c["solves"], 1),
+        "cg_fallbacks": c.get("cg_fallbacks", 0),
         "seconds_steps": total,
         "wall_seconds": summary["wall_seconds"],
         "elapsed": elapsed,
@@ -111,17 +114,20 @@ def ms(seconds):
 
 def print_table(rows):
     print("| scene | model | blocks | unknowns | closed contacts | steps (cuts) | factorisations "
-          "per step | detection | assembly | contact | factorisation | solve | update | other "
+          "per step (CG iterations per solve, fallbacks) | detection | assembly | contact | factorisation | solve | update | other "
           "| **step** ms | steps/s | load |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- "
           "| --- | --- | --- |")
     for r in rows:
         p = r["per_step"]
         status = "" if r["status"] == "completed" else " (%s)" % r["status"][:60]
-        print("| %s | %s | %d | %d | %d | %d (%d)%s | %.1f | %s | %s | %s | %s | %s | %s | %s "
+        factorisations = "%.1f" % (r["factorisations"] / max(r["steps"], 1))
+        if "/" in r["kind"]:
+            factorisations += " (%.1f, %d)" % (r["cg_per_solve"], r["cg_fallbacks"])
+        print("| %s | %s | %d | %d | %d | %d (%d)%s | %s | %s | %s | %s | %s | %s | %s | %s "
               "| **%s** | %.3g | %.1f-%.1f |"
               % (r["label"], r["kind"], r["blocks"], r["unknowns"], r["contacts"], r["steps"],
-                 r["cuts"], status, r["factorisations"] / max(r["steps"], 1), ms(p["detection"]),
+                 r["cuts"], status, factorisations, ms(p["detection"]),
                  ms(p["assembly"]), ms(p["contact"]), ms(p["factorisation"]), ms(p["solve"]),
                  ms(p["update"]), ms(p["other"]), ms(r["step"]), r["steps_per_second"],
                  r["load"][0], r["load"][1]))
@@ -141,10 +147,16 @@ def write_tsv(path, rows):
                                 p["other"], r["step"], r["steps_per_second"]))
 
 
-def wall_case(work, model):
-    """examples/13_block_wall_70 with the model switched and open_close_max = 20 added."""
+def kind(model, solver):
+    """The model column: the model, with "/pcg" for conjugate gradients."""
+    return model if solver == "cholmod" else "%s/%s" % (model, solver)
+
+
+def wall_case(work, model, solver):
+    """examples/13_block_wall_70 with the model and solver switched and open_close_max = 20
+    added."""
     source = os.path.join(ROOT, "examples", "13_block_wall_70")
-    folder = os.path.join(work, "wall70_%s" % model)
+    folder = os.path.join(work, "wall70_%s" % kind(model, solver).replace("/", "_"))
     os.makedirs(folder, exist_ok=True)
     shutil.copy(os.path.join(source, "block_wall_70.geo"), folder)
     with open(os.path.join(source, "case.toml")) as f:
@@ -157,6 +169,8 @@ def wall_case(work, model):
         out.append(line)
         if line.startswith("[analysis]") and not has_limit:
             out.append("open_close_max = 20   # added by bench/block_bench.py")
+        if line.startswith("[analysis]") and solver != "cholmod":
+            out.append('solver = "%s"   # added by bench/block_bench.py' % solver)
     case = os.path.join(folder, "case.toml")
     with open(case, "w") as f:
         f.write("\n".join(out) + "\n")
@@ -176,12 +190,17 @@ def main(argv=None):
     p.add_argument("--no-wall", action="store_true", help="skip the 70-block wall")
     p.add_argument("--no-rock-mass", action="store_true", help="only the 70-block wall")
     p.add_argument("--threads", type=int, help="nmm --threads (default: nmm's, the usable cores)")
+    p.add_argument("--solvers", default="cholmod",
+                   help="[analysis] solver of the runs, cholmod and/or pcg (default cholmod)")
     args = p.parse_args(argv)
     if not os.path.exists(args.nmm):
         sys.exit("block_bench: no %s; build it with `bash scripts/build.sh release`" % args.nmm)
     steps = parse_steps(args.steps)
     sizes = [int(s) for s in args.sizes.split(",") if s]
     models = [m for m in args.models.split(",") if m]
+    solvers = [s for s in args.solvers.split(",") if s]
+    if not solvers or any(s not in ("cholmod", "pcg") for s in solvers):
+        sys.exit("block_bench: --solvers takes cholmod and/or pcg")
     for size in sizes:
         if size not in steps:
             sys.exit("block_bench: no step count for size %d in --steps" % size)
@@ -198,28 +217,33 @@ def main(argv=None):
     if not args.no_rock_mass:
         for size in sizes:
             for model in models:
-                folder = os.path.join(args.work, "%s_%d" % (model, size))
-                generate = [sys.executable, os.path.join(ROOT, "bench", "rock_mass.py"),
-                            "--blocks", str(size), "--model", model, "--out", folder,
-                            "--steps", str(steps[size]), "--open-close-max", "20"]
-                made = subprocess.run(generate, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                      text=True)
-                if made.returncode != 0:
-                    sys.exit("block_bench: %s failed:\n%s" % (" ".join(generate), made.stdout))
-                planned = int(made.stdout.split("planned ")[1].split()[0])
-                summary, contacts, elapsed, load = run_nmm_counted(
-                    args.nmm, os.path.join(folder, "case.toml"), os.path.join(folder, "out"),
-                    args.threads)
-                rows.append(figures("rock mass", model, planned, summary, contacts, elapsed,
-                                    load))
-                print_table(rows[-1:])
+                for solver in solvers:
+                    folder = os.path.join(args.work, "%s_%d" % (kind(model, solver).replace("/", "_"),
+                                                                size))
+                    generate = [sys.executable, os.path.join(ROOT, "bench", "rock_mass.py"),
+                                "--blocks", str(size), "--model", model, "--out", folder,
+                                "--steps", str(steps[size]), "--open-close-max", "20",
+                                "--solver", solver]
+                    made = subprocess.run(generate, stdout=subprocess.PIPE,
+                                          stderr=subprocess.STDOUT, text=True)
+                    if made.returncode != 0:
+                        sys.exit("block_bench: %s failed:\n%s" % (" ".join(generate), made.stdout))
+                    planned = int(made.stdout.split("planned ")[1].split()[0])
+                    summary, contacts, elapsed, load = run_nmm_counted(
+                        args.nmm, os.path.join(folder, "case.toml"), os.path.join(folder, "out"),
+                        args.threads)
+                    rows.append(figures("rock mass", kind(model, solver), planned, summary,
+                                        contacts, elapsed, load))
+                    print_table(rows[-1:])
     if not args.no_wall:
         for model in ("dda", "vem"):
-            case, folder = wall_case(args.work, model)
-            summary, contacts, elapsed, load = run_nmm_counted(
-                args.nmm, case, os.path.join(folder, "out"), args.threads)
-            rows.append(figures("wall 70", model, 70, summary, contacts, elapsed, load))
-            print_table(rows[-1:])
+            for solver in solvers:
+                case, folder = wall_case(args.work, model, solver)
+                summary, contacts, elapsed, load = run_nmm_counted(
+                    args.nmm, case, os.path.join(folder, "out"), args.threads)
+                rows.append(figures("wall 70", kind(model, solver), 70, summary, contacts,
+                                    elapsed, load))
+                print_table(rows[-1:])
     print()
     print_table(rows)
     write_tsv(os.path.join(args.work, "block_bench.tsv"), rows)
@@ -230,7 +254,7 @@ def main(argv=None):
                   "with meshing and output): %s" % (
                       r["kind"], r["steps"], WALL_GOAL_SECONDS, r["seconds_steps"],
                       r["wall_seconds"], verdict(WALL_GOAL_SECONDS / r["seconds_steps"])))
-        if r["kind"] == "dda" and r["blocks"] >= 9000 and r["label"] == "rock mass":
+        if r["kind"].startswith("dda") and r["blocks"] >= 9000 and r["label"] == "rock mass":
             print("goal: at %d DDA blocks at least %.0f steps/s: %.3g steps/s: %s" % (
                 r["blocks"], DDA_GOAL_STEPS_PER_SECOND, r["steps_per_second"],
                 verdict(r["steps_per_second"] / DDA_GOAL_STEPS_PER_SECOND)))

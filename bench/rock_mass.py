@@ -418,6 +418,8 @@ def write_case(path, sets, w, h, depth, planned, cover, args):
         emit("open_close_max = %d" % args.open_close_max)
     if args.initial_equilibrium:
         emit("initial_equilibrium = true")
+    if args.solver != "cholmod":
+        emit('solver = "%s"' % args.solver)
     emit("")
     emit("[output]")
     emit('dir = "out"')
@@ -463,6 +465,8 @@ def main(argv=None):
                    help="model of the foundation (default: the same as --model)")
     p.add_argument("--open-close-max", type=int, metavar="M",
                    help="[analysis] open_close_max (1 to 100; default: not written, nmm's 6)")
+    p.add_argument("--solver", choices=("cholmod", "pcg"), default="cholmod",
+                   help="[analysis] solver (default cholmod, not written)")
     p.add_argument("--initial-equilibrium", action="store_true",
                    help="start from the static equilibrium under gravity")
     args = p.parse_args(argv)

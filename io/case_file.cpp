@@ -72,6 +72,7 @@ constexpr std::string_view analysis_keys[] = {"kind",
                                               "penetration_tolerance",
                                               "open_close_max",
                                               "solver",
+                                              "pcg_tolerance",
                                               "max_step_cuts",
                                               "end_time",
                                               "initial_equilibrium"};
@@ -818,10 +819,11 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
                     "the line for the penalty springs alone");
   spec.open_close_max = view.small_integer_or("open_close_max", 6, 1, 100, "6");
   spec.solver = static_cast<LinearSolverKind>(view.choice("solver", solver_kinds, 0));
-  if (spec.solver != LinearSolverKind::cholmod)
-    view.fail_at_value("solver", "[analysis] solver = \"pcg\" is not yet supported (the "
-                                 "conjugate-gradient solver is planned); remove the line or "
-                                 "write solver = \"cholmod\"");
+  spec.pcg_tolerance = view.number_or("pcg_tolerance", spec.pcg_tolerance, "a fraction", "1.0e-10");
+  if (!(spec.pcg_tolerance >= 1e-15 && spec.pcg_tolerance <= 1e-3))
+    view.fail_range("pcg_tolerance", spec.pcg_tolerance,
+                    "it must be between 1e-15 and 1e-3: the residual of a conjugate-gradient "
+                    "solve relative to its right-hand side");
   spec.max_step_cuts = view.small_integer_or("max_step_cuts", 10, 0, 50, "10");
   spec.end_time = view.number("end_time", "s", "1.0");
   if (spec.end_time && !(*spec.end_time > 0.0))

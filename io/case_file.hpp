@@ -171,6 +171,8 @@ struct AnalysisSpec {
   /// Most open-close iterations per step, 1..100.
   int open_close_max = 6;
   LinearSolverKind solver = LinearSolverKind::cholmod;
+  /// Residual over right-hand side at which a conjugate-gradient solve stops (solver = "pcg").
+  double pcg_tolerance = 1e-10;
   /// Most times a step may be cut (to a third, or to fit max_step_displacement) before the
   /// run stops, 0..50.
   int max_step_cuts = 10;

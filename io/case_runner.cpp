@@ -435,6 +435,8 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
       spec_.analysis.penalty_stiffness.value_or(spec_.analysis.penalty * largest_young);
   options.max_step_cuts = spec_.analysis.max_step_cuts;
   options.open_close_max = spec_.analysis.open_close_max;
+  if (spec_.analysis.solver == LinearSolverKind::pcg)
+    options.conjugate_gradients = PcgOptions{.tolerance = spec_.analysis.pcg_tolerance};
   std::unique_ptr<ContactSystem> contact;
   if (touching)
     contact = make_contact_system(options.spring_stiffness);

@@ -263,6 +263,8 @@ std::string summary_json(const RunSummary& s) {
   counters.integer("symbolic_analyses", s.solver_counters.symbolic_analyses);
   counters.integer("factorizations", s.solver_counters.factorizations);
   counters.integer("solves", s.solver_counters.solves);
+  counters.integer("cg_iterations", s.solver_counters.iterations);
+  counters.integer("cg_fallbacks", s.solver_counters.fallbacks);
   counters.integer("plan_rebuilds", s.counters.plan_rebuilds);
   counters.integer("augmentations", s.counters.augmentations);
   counters.integer("locks_beyond_friction", s.counters.locks_beyond_friction);

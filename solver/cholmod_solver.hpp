@@ -35,8 +35,7 @@ public:
   /// analyze() (0 before it).
   [[nodiscard]] double factor_flops() const;
 
-  /// Column at which the last failed factorization met a non-positive pivot, or -1.
-  [[nodiscard]] long failed_column() const;
+  [[nodiscard]] long failed_column() const override;
 
 private:
   struct Impl;

@@ -29,6 +29,8 @@ struct SolverCounters {
   long symbolic_analyses = 0;
   long factorizations = 0;
   long solves = 0;
+  long iterations = 0; ///< conjugate-gradient iterations (PcgSolver)
+  long fallbacks = 0;  ///< solves PcgSolver left to CHOLMOD
 };
 
 /// Symmetric positive definite solver with a reusable symbolic analysis.
@@ -49,13 +51,21 @@ public:
   /// Numerical factorization of @p matrix, which must have the analysed pattern.
   [[nodiscard]] virtual SolveStatus factorize(const SparseMatrix& matrix) = 0;
   /// Solves A x = rhs with the last factorization; @p solution is resized as needed (an
-  /// output argument so that the step loop can reuse its storage).
+  /// output argument so that the step loop can reuse its storage). An iterative solver
+  /// starts from @p solution when it has the system's size: the caller's guess.
   [[nodiscard]] virtual SolveStatus solve(const Eigen::VectorXd& rhs,
                                           Eigen::VectorXd& solution) = 0;
   /// Counts of the calls above that succeeded.
   [[nodiscard]] virtual const SolverCounters& counters() const = 0;
   /// Short description, e.g. "CHOLMOD 3.0.14 supernodal".
   [[nodiscard]] virtual std::string name() const = 0;
+  /// A new time step begins: an iterative solver forgets what it learned of the last one's
+  /// systems, so that a run restarted at this step does the same arithmetic as one that was
+  /// not stopped.
+  virtual void start_step() {}
+  /// The matrix's own column at which the last call that returned not_positive_definite met
+  /// a non-positive pivot, or -1.
+  [[nodiscard]] virtual long failed_column() const = 0;
 };
 
 } // namespace nmm

@@ -133,7 +133,7 @@ std::string energy_message(
 struct TimeStepper::Impl {
   std::unique_ptr<ContactSystem> contact;     // null when nothing can touch
   std::vector<LinearConstraint> dependencies; // order-1 fixes, chosen once
-  CholmodSolver solver;
+  std::unique_ptr<LinearSolver> solver;
   SparsityPattern pattern;
   std::unique_ptr<Assembler> stiffness;
   /// Consistent mass of every element (times density and thickness), kept from the assembly
@@ -166,6 +166,10 @@ TimeStepper::TimeStepper(Model& model,
                          std::unique_ptr<ContactSystem> contact)
     : model_(model), scene_(std::move(scene)), options_(options),
       velocity_(Eigen::VectorXd::Zero(model.n_dofs())), impl_(std::make_unique<Impl>()) {
+  if (options_.conjugate_gradients)
+    impl_->solver = std::make_unique<PcgSolver>(*options_.conjugate_gradients);
+  else
+    impl_->solver = std::make_unique<CholmodSolver>();
   // Skip what the scene does not need: no contact search where nothing can touch.
   if (contact && ContactSystem::can_touch(model_))
     impl_->contact = std::move(contact);
@@ -215,10 +219,12 @@ TimeStepper::TimeStepper(Model& model,
 TimeStepper::~TimeStepper() = default;
 
 SolverCounters TimeStepper::solver_counters() const {
-  SolverCounters counters = impl_->solver.counters();
+  SolverCounters counters = impl_->solver->counters();
   counters.symbolic_analyses += impl_->restored_counters.symbolic_analyses;
   counters.factorizations += impl_->restored_counters.factorizations;
   counters.solves += impl_->restored_counters.solves;
+  counters.iterations += impl_->restored_counters.iterations;
+  counters.fallbacks += impl_->restored_counters.fallbacks;
   return counters;
 }
 
@@ -291,6 +297,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   // the parts add up to the whole (StepperCounters).
   const Clock::time_point step_start = Clock::now();
   Clock::time_point clock = step_start;
+  impl_->solver->start_step();
   const bool dynamic = options_.integration == TimeIntegration::dynamic && !equilibrium;
   // Static analysis without contact: one solve with the stiffness alone per step; with
   // contact, Shi's static keeps the inertia term and resets the velocity every step. The
@@ -553,6 +560,19 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     int friction_solves = 0;
     int open_close = 0; // iterations that changed a contact's mode
     int augmentations = 0;
+    // An iterative solver's first guess: the step displacement of constant velocity (Shi's
+    // d = v dt + a dt^2 / 2 without the acceleration; zero in static steps); then each
+    // open-close iteration starts from the last one's solution.
+    Eigen::VectorXd reduced;
+    if (options_.conjugate_gradients) {
+      reduced.setZero(map.n_reduced());
+      if (dynamic) {
+        for (int r = 0; r < map.n_raw(); ++r) {
+          if (!map.is_slave(r))
+            reduced(map.reduced(r)) = velocity_(r) * dt;
+        }
+      }
+    }
     for (;;) {
       ++iteration;
       Eigen::VectorXd f_iteration = f;
@@ -582,22 +602,24 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       const Eigen::VectorXd rhs = map.restrict(f_iteration) + rhs_correction;
       lap(clock, counters_.seconds_assembly);
       if (rebuilt || !impl_->analysed) {
-        if (impl_->solver.analyze(a.matrix()) != SolveStatus::ok)
+        if (impl_->solver->analyze(a.matrix()) != SolveStatus::ok)
           throw NumericalError("the symbolic analysis of the step matrix failed");
         impl_->analysed = true;
         rebuilt = false;
       }
       lap(clock, counters_.seconds_analysis);
       if (assemble) {
-        const SolveStatus factor = impl_->solver.factorize(a.matrix());
+        const SolveStatus factor = impl_->solver->factorize(a.matrix());
         if (factor != SolveStatus::ok)
           throw NumericalError(
-              singular_message(model_, map, impl_->solver.failed_column(), factor));
+              singular_message(model_, map, impl_->solver->failed_column(), factor));
         ++factorisations;
       }
       lap(clock, counters_.seconds_factorization);
-      Eigen::VectorXd reduced;
-      if (impl_->solver.solve(rhs, reduced) != SolveStatus::ok)
+      const SolveStatus solved = impl_->solver->solve(rhs, reduced);
+      if (solved == SolveStatus::not_positive_definite) // found by CHOLMOD after CG failed
+        throw NumericalError(singular_message(model_, map, impl_->solver->failed_column(), solved));
+      if (solved != SolveStatus::ok)
         throw NumericalError("the solve of the step system failed");
       raw = map.expand(reduced);
       if (!raw.allFinite())
@@ -876,6 +898,8 @@ void TimeStepper::save_state(StateWriter& out) const {
   out.put(static_cast<std::int64_t>(solver.symbolic_analyses));
   out.put(static_cast<std::int64_t>(solver.factorizations));
   out.put(static_cast<std::int64_t>(solver.solves));
+  out.put(static_cast<std::int64_t>(solver.iterations));
+  out.put(static_cast<std::int64_t>(solver.fallbacks));
   out.put_count(warnings_.size());
   for (const std::string& w : warnings_)
     out.put(w);
@@ -933,6 +957,8 @@ void TimeStepper::load_state(StateReader& in) {
   impl_->restored_counters.symbolic_analyses = static_cast<long>(in.integer());
   impl_->restored_counters.factorizations = static_cast<long>(in.integer());
   impl_->restored_counters.solves = static_cast<long>(in.integer());
+  impl_->restored_counters.iterations = static_cast<long>(in.integer());
+  impl_->restored_counters.fallbacks = static_cast<long>(in.integer());
   warnings_.resize(in.count());
   for (std::string& w : warnings_)
     w = in.text();

@@ -11,6 +11,7 @@
 #include "manifold/model.hpp"
 #include "solver/dof_map.hpp"
 #include "solver/linear_solver.hpp"
+#include "solver/pcg_solver.hpp"
 
 #include <Eigen/Core>
 
@@ -44,6 +45,9 @@ struct StepperOptions {
   /// Solves with the same factor for friction alone (no mode changed, the friction loads
   /// still moving) per step before the step is cut.
   int friction_solves_max = 50;
+  /// Solve the step systems by conjugate gradients with these settings (PcgSolver, CHOLMOD
+  /// where they do not converge); empty: by CHOLMOD.
+  std::optional<PcgOptions> conjugate_gradients;
 };
 
 /// What stays defined through the run: supports, loads and the material points to follow.

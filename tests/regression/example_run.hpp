@@ -38,6 +38,30 @@ inline std::map<std::string, std::vector<double>> read_history_columns(const fs:
   return columns;
 }
 
+/// The case file examples/@p example/@p case_file with @p line added at the top of its
+/// [analysis] table and its geometry named by its full path: a variant of the example that
+/// can be written to another folder.
+inline std::string
+example_variant(const std::string& example, const std::string& case_file, const std::string& line) {
+  const fs::path folder = fs::path(NMM_EXAMPLES_DIR) / example;
+  std::string text = read_text(folder / case_file);
+  const std::string analysis = "[analysis]\n";
+  const std::string geometry = "geometry = \"";
+  const std::size_t at_analysis = text.find(analysis);
+  const std::size_t at_geometry = text.find(geometry);
+  const std::size_t name_end = text.find('"', at_geometry + geometry.size());
+  EXPECT_NE(at_analysis, std::string::npos) << case_file;
+  EXPECT_NE(name_end, std::string::npos) << case_file;
+  if (at_analysis == std::string::npos || at_geometry == std::string::npos ||
+      name_end == std::string::npos)
+    return text;
+  text.insert(at_analysis + analysis.size(), line + "\n");
+  const std::size_t start = at_geometry + geometry.size();
+  text.replace(start, name_end - start,
+               (folder / text.substr(start, name_end - start)).generic_string());
+  return text;
+}
+
 /// What one run of an example left: the program's output, summary.json, and history.csv.
 struct ExampleRun {
   ProcessResult process;

@@ -185,6 +185,7 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_FALSE(spec.analysis.penalty_stiffness.has_value());
   EXPECT_EQ(spec.analysis.open_close_max, 6);
   EXPECT_EQ(spec.analysis.solver, LinearSolverKind::cholmod);
+  EXPECT_DOUBLE_EQ(spec.analysis.pcg_tolerance, 1e-10);
   EXPECT_EQ(spec.analysis.max_step_cuts, 10);
   EXPECT_FALSE(spec.analysis.end_time.has_value());
   EXPECT_FALSE(spec.analysis.initial_equilibrium);
@@ -333,7 +334,8 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "exact_rotation = true\n"
       "[contact]\nfriction_angle = 25\ncohesion = 1e4\ntensile_strength = 5e3\n"
       "[analysis]\nkind = \"dynamic\"\nsteps = 50\npenalty_stiffness = 1e12\nopen_close_max = 20\n"
-      "solver = \"cholmod\"\nmax_step_cuts = 0\nend_time = 2.5\nmax_step_displacement = 0.5\n"
+      "solver = \"pcg\"\npcg_tolerance = 1e-8\nmax_step_cuts = 0\nend_time = 2.5\n"
+      "max_step_displacement = 0.5\n"
       "initial_equilibrium = true\npenetration_tolerance = 1e-4\n"
       "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 25\n";
   const CaseSpec spec = parse_case_text(text, "case.toml");
@@ -354,7 +356,8 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_DOUBLE_EQ(spec.contact.tensile_strength, 5e3);
   EXPECT_DOUBLE_EQ(spec.analysis.penalty_stiffness.value(), 1e12);
   EXPECT_EQ(spec.analysis.open_close_max, 20);
-  EXPECT_EQ(spec.analysis.solver, LinearSolverKind::cholmod);
+  EXPECT_EQ(spec.analysis.solver, LinearSolverKind::pcg);
+  EXPECT_DOUBLE_EQ(spec.analysis.pcg_tolerance, 1e-8);
   EXPECT_EQ(spec.analysis.max_step_cuts, 0);
   EXPECT_DOUBLE_EQ(spec.analysis.end_time.value(), 2.5);
   EXPECT_DOUBLE_EQ(spec.analysis.max_step_displacement, 0.5);
@@ -589,8 +592,10 @@ std::vector<BadCase> bad_cases() {
       {"OutputEveryZero", minimal + "[output]\nevery = 0 # <-\n", "[output] every = 0 is out"},
       {"NegativeCheckpoint", minimal + "[output]\ncheckpoint_every = -1 # <-\n",
        "checkpoint_every = -1"},
-      // accepted keys whose feature is not built yet: refused, never silently ignored
-      {"PcgNotYet", minimal + "solver = \"pcg\" # <-\n", "solver = \"pcg\" is not yet supported"},
+      {"PcgToleranceTooLoose", minimal + "solver = \"pcg\"\npcg_tolerance = 0.01 # <-\n",
+       "pcg_tolerance = 0.01 is out of range"},
+      {"PcgToleranceZero", minimal + "pcg_tolerance = 0 # <-\n",
+       "pcg_tolerance = 0 is out of range"},
       // choices
       {"ChoiceSuggestsCase", minimal + "solver = \"Cholmod\" # <-\n",
        "solver = \"Cholmod\" is not allowed; did you mean \"cholmod\"?"},

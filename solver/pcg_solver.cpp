@@ -1,0 +1,312 @@
+// SPDX-License-Identifier: MIT
+#include "solver/pcg_solver.hpp"
+
+#include "mesh/error.hpp"
+#include "solver/cholmod_solver.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace nmm {
+
+namespace {
+
+/// Largest diagonal block of the preconditioner: an order-2 cover has 12 unknowns. Longer
+/// runs of unknowns with one pattern (a small dense system) are split.
+constexpr int max_block = 12;
+
+} // namespace
+
+struct PcgSolver::Impl {
+  PcgOptions options;
+  SparseMatrix matrix;     ///< pattern of analyze(), values of the last factorize()
+  bool analysed = false;   ///< analyze() succeeded: matrix has the pattern
+  bool factorised = false; ///< factorize() succeeded: matrix has the values, blocks inverted
+  /// CHOLMOD does the work: the pattern lacks a diagonal entry (until the next analyze()),
+  /// or conjugate gradients gave up on a system of it (until then or the next start_step()).
+  bool singular_pattern = false;
+  bool gave_up = false;
+  std::vector<int> diagonal; ///< index of (j, j) among the values, per column
+  /// Diagonal blocks: unknowns block_start[b] .. block_start[b + 1] - 1; for each, the index
+  /// among the values of every entry (i, j), i <= j, of its upper triangle (column by
+  /// column), -1 where the pattern has none; and the inverse of the block after factorize(),
+  /// column-major, from inverse_start[b].
+  std::vector<int> block_start;
+  std::vector<int> block_entry;
+  std::vector<int> entry_start;
+  std::vector<double> inverse;
+  std::vector<int> inverse_start;
+  /// CHOLMOD for the solves conjugate gradients cannot do: analysed and factorised on demand.
+  CholmodSolver direct;
+  bool direct_analysed = false;
+  bool direct_factorised = false;
+  long failed_column = -1;
+  Eigen::VectorXd r, z, p, q; ///< the iteration's vectors, reused
+  SolverCounters counters;
+
+  /// y = A x, A symmetric with its upper triangle read (up to the diagonal of each column).
+  void multiply(const Eigen::VectorXd& x, Eigen::VectorXd& y) const {
+    const int n = static_cast<int>(matrix.rows());
+    const int* start = matrix.outerIndexPtr();
+    const int* row = matrix.innerIndexPtr();
+    const double* value = matrix.valuePtr();
+    y.setZero(n);
+    for (int j = 0; j < n; ++j) {
+      const double xj = x(j);
+      double sum = value[diagonal[static_cast<std::size_t>(j)]] * xj;
+      for (int k = start[j]; k < diagonal[static_cast<std::size_t>(j)]; ++k) {
+        const int i = row[k];
+        y(i) += value[k] * xj;
+        sum += value[k] * x(i);
+      }
+      y(j) += sum;
+    }
+  }
+
+  /// z = B^-1 r, B the block diagonal of A.
+  void precondition(const Eigen::VectorXd& residual, Eigen::VectorXd& result) const {
+    result.resize(residual.size());
+    for (std::size_t b = 0; b + 1 < block_start.size(); ++b) {
+      const int s = block_start[b];
+      const int m = block_start[b + 1] - s;
+      const Eigen::Map<const Eigen::MatrixXd> block(inverse.data() + inverse_start[b], m, m);
+      result.segment(s, m).noalias() = block * residual.segment(s, m);
+    }
+  }
+
+  /// CHOLMOD's factorisation of the matrix factorize() was given, analysing it first if
+  /// needed.
+  SolveStatus factorize_directly() {
+    if (!direct_analysed) {
+      const SolveStatus status = direct.analyze(matrix);
+      if (status != SolveStatus::ok)
+        return status;
+      direct_analysed = true;
+    }
+    const SolveStatus status = direct.factorize(matrix);
+    direct_factorised = status == SolveStatus::ok;
+    if (status == SolveStatus::ok)
+      ++counters.factorizations;
+    else
+      failed_column = direct.failed_column();
+    return status;
+  }
+
+  /// CHOLMOD's solve of the system factorize() was given, factorising it first if needed.
+  SolveStatus solve_directly(const Eigen::VectorXd& rhs, Eigen::VectorXd& solution) {
+    if (!direct_factorised) {
+      const SolveStatus status = factorize_directly();
+      if (status != SolveStatus::ok)
+        return status;
+    }
+    return direct.solve(rhs, solution);
+  }
+};
+
+PcgSolver::PcgSolver(PcgOptions options) : impl_(std::make_unique<Impl>()) {
+  NMM_ASSERT(options.tolerance > 0.0 && options.max_iterations > 0,
+             "the conjugate-gradient tolerance and iteration limit must be positive");
+  impl_->options = options;
+}
+
+PcgSolver::~PcgSolver() = default;
+
+// The pattern's diagonal blocks: unknowns j and j + 1 share a block when their columns of the
+// symmetric pattern are the same set (the unknowns of one cover or DDA block couple with the
+// same unknowns, each other included).
+SolveStatus PcgSolver::analyze(const SparseMatrix& matrix) {
+  NMM_ASSERT(matrix.rows() == matrix.cols(), "conjugate gradients need a square matrix");
+  NMM_ASSERT(matrix.isCompressed(), "conjugate gradients need a compressed matrix");
+  Impl& m = *impl_;
+  m.analysed = m.factorised = m.direct_analysed = m.direct_factorised = false;
+  m.singular_pattern = m.gave_up = false;
+  m.failed_column = -1;
+  m.matrix = matrix;
+  const int n = static_cast<int>(matrix.rows());
+  const int* start = matrix.outerIndexPtr();
+  const int* row = matrix.innerIndexPtr();
+  m.diagonal.assign(static_cast<std::size_t>(n), -1);
+  // The symmetric pattern by columns: the upper triangle's rows, then the transposed entries.
+  // Rows are sorted, so the diagonal ends the upper part of its column (entries below it, of
+  // a lower triangle, are not read); without one, the matrix is singular.
+  std::vector<int> count(static_cast<std::size_t>(n) + 1, 0);
+  for (int j = 0; j < n; ++j) {
+    const int* diagonal = std::lower_bound(row + start[j], row + start[j + 1], j);
+    if (diagonal == row + start[j + 1] || *diagonal != j) {
+      // A singular matrix: CHOLMOD's factorisation will say so, and where.
+      m.singular_pattern = m.analysed = true;
+      ++m.counters.symbolic_analyses;
+      return SolveStatus::ok;
+    }
+    m.diagonal[static_cast<std::size_t>(j)] = static_cast<int>(diagonal - row);
+    count[static_cast<std::size_t>(j) + 1] += static_cast<int>(diagonal - (row + start[j])) + 1;
+    for (const int* i = row + start[j]; i != diagonal; ++i)
+      ++count[static_cast<std::size_t>(*i) + 1];
+  }
+  for (int j = 0; j < n; ++j)
+    count[static_cast<std::size_t>(j) + 1] += count[static_cast<std::size_t>(j)];
+  std::vector<int> full(static_cast<std::size_t>(count.back()));
+  std::vector<int> fill(count.begin(), count.end() - 1);
+  for (int j = 0; j < n; ++j) {
+    for (int k = start[j]; k <= m.diagonal[static_cast<std::size_t>(j)]; ++k)
+      full[static_cast<std::size_t>(fill[static_cast<std::size_t>(j)]++)] = row[k];
+  }
+  for (int j = 0; j < n; ++j) { // column j's entries (i, j), i < j, as (j, i): increasing j
+    for (int k = start[j]; k < m.diagonal[static_cast<std::size_t>(j)]; ++k)
+      full[static_cast<std::size_t>(fill[static_cast<std::size_t>(row[k])]++)] = j;
+  }
+  auto same_pattern = [&](int a, int b) {
+    const auto* first = full.data() + count[static_cast<std::size_t>(a)];
+    const auto* last = full.data() + count[static_cast<std::size_t>(a) + 1];
+    const auto* other = full.data() + count[static_cast<std::size_t>(b)];
+    const auto* other_last = full.data() + count[static_cast<std::size_t>(b) + 1];
+    return last - first == other_last - other && std::equal(first, last, other);
+  };
+  m.block_start.assign(1, 0);
+  for (int j = 1; j < n; ++j) {
+    if (!same_pattern(j - 1, j) || j - m.block_start.back() >= max_block)
+      m.block_start.push_back(j);
+  }
+  if (n > 0)
+    m.block_start.push_back(n);
+  // Where each block's upper-triangle entries are among the values.
+  m.block_entry.clear();
+  m.entry_start.assign(1, 0);
+  m.inverse_start.assign(1, 0);
+  for (std::size_t b = 0; b + 1 < m.block_start.size(); ++b) {
+    const int s = m.block_start[b];
+    const int e = m.block_start[b + 1];
+    for (int j = s; j < e; ++j) {
+      for (int i = s; i <= j; ++i) {
+        const int* end = row + m.diagonal[static_cast<std::size_t>(j)] + 1;
+        const int* found = std::lower_bound(row + start[j], end, i);
+        m.block_entry.push_back(found != end && *found == i ? static_cast<int>(found - row) : -1);
+      }
+    }
+    m.entry_start.push_back(static_cast<int>(m.block_entry.size()));
+    m.inverse_start.push_back(m.inverse_start.back() + (e - s) * (e - s));
+  }
+  m.inverse.assign(static_cast<std::size_t>(m.inverse_start.back()), 0.0);
+  m.analysed = true;
+  ++m.counters.symbolic_analyses;
+  return SolveStatus::ok;
+}
+
+SolveStatus PcgSolver::factorize(const SparseMatrix& matrix) {
+  Impl& m = *impl_;
+  m.factorised = m.direct_factorised = false;
+  m.failed_column = -1;
+  if (!m.analysed || matrix.rows() != m.matrix.rows() || matrix.nonZeros() != m.matrix.nonZeros())
+    return SolveStatus::failed;
+  std::copy(matrix.valuePtr(), matrix.valuePtr() + matrix.nonZeros(), m.matrix.valuePtr());
+  if (m.singular_pattern || m.gave_up) {
+    const SolveStatus status = m.factorize_directly();
+    m.factorised = status == SolveStatus::ok;
+    return status;
+  }
+  const double* value = m.matrix.valuePtr();
+  Eigen::MatrixXd block;
+  Eigen::LLT<Eigen::MatrixXd> llt;
+  for (std::size_t b = 0; b + 1 < m.block_start.size(); ++b) {
+    const int s = m.block_start[b];
+    const int size = m.block_start[b + 1] - s;
+    block.setZero(size, size);
+    const int* entry = m.block_entry.data() + m.entry_start[b];
+    for (int j = 0; j < size; ++j) {
+      for (int i = 0; i <= j; ++i, ++entry) {
+        if (*entry >= 0)
+          block(i, j) = block(j, i) = value[*entry];
+      }
+    }
+    llt.compute(block);
+    if (llt.info() != Eigen::Success) {
+      // A diagonal block that is not positive definite: neither is the matrix, and CHOLMOD
+      // says where, as it would without conjugate gradients. (Should rounding let it through
+      // nonetheless, its factor does the solves.)
+      const SolveStatus status = m.factorize_directly();
+      m.factorised = status == SolveStatus::ok;
+      return status;
+    }
+    Eigen::Map<Eigen::MatrixXd>(m.inverse.data() + m.inverse_start[b], size, size) =
+        llt.solve(Eigen::MatrixXd::Identity(size, size));
+  }
+  m.factorised = true;
+  return SolveStatus::ok;
+}
+
+// Preconditioned conjugate gradients (Saad, Iterative Methods for Sparse Linear Systems,
+// algorithm 9.1), stopped at ||r|| <= tolerance ||b||.
+SolveStatus PcgSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& solution) {
+  Impl& m = *impl_;
+  if (!m.factorised || rhs.size() != m.matrix.rows())
+    return SolveStatus::failed;
+  SolveStatus status = SolveStatus::ok;
+  if (m.direct_factorised) {
+    status = m.solve_directly(rhs, solution);
+  } else {
+    const double target = m.options.tolerance * rhs.norm();
+    if (solution.size() != rhs.size() || !solution.allFinite() || target == 0.0)
+      solution.setZero(rhs.size()); // no guess, or the zero solution of a zero right side
+    m.multiply(solution, m.q);
+    m.r = rhs - m.q;
+    bool converged = m.r.norm() <= target;
+    if (!converged) {
+      m.precondition(m.r, m.z);
+      m.p = m.z;
+      double rz = m.r.dot(m.z);
+      for (int iteration = 0; iteration < m.options.max_iterations; ++iteration) {
+        m.multiply(m.p, m.q);
+        const double curvature = m.p.dot(m.q);
+        ++m.counters.iterations;
+        if (!(curvature > 0.0))
+          break; // not positive definite (or singular): CHOLMOD will say where
+        const double alpha = rz / curvature;
+        solution += alpha * m.p;
+        m.r -= alpha * m.q;
+        if (m.r.norm() <= target) {
+          converged = true;
+          break;
+        }
+        m.precondition(m.r, m.z);
+        const double rz_next = m.r.dot(m.z);
+        m.p = m.z + (rz_next / rz) * m.p;
+        rz = rz_next;
+      }
+    }
+    if (!converged) {
+      // Systems of this pattern are not for conjugate gradients (a static step, stiff springs
+      // on light blocks): the step's next ones go to CHOLMOD at once, without the futile
+      // iterations.
+      ++m.counters.fallbacks;
+      m.gave_up = true;
+      status = m.solve_directly(rhs, solution);
+    }
+  }
+  if (status == SolveStatus::ok)
+    ++m.counters.solves;
+  return status;
+}
+
+const SolverCounters& PcgSolver::counters() const { return impl_->counters; }
+
+std::string PcgSolver::name() const {
+  return "conjugate gradients, block Jacobi (" + cholmod_version() + " when they do not converge)";
+}
+
+long PcgSolver::failed_column() const { return impl_->failed_column; }
+
+void PcgSolver::start_step() { impl_->gave_up = false; }
+
+std::vector<int> PcgSolver::block_sizes() const {
+  std::vector<int> sizes;
+  for (std::size_t b = 0; b + 1 < impl_->block_start.size(); ++b)
+    sizes.push_back(impl_->block_start[b + 1] - impl_->block_start[b]);
+  return sizes;
+}
+
+} // namespace nmm

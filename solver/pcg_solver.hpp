@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: MIT
+// solver/pcg_solver.hpp — conjugate gradients with a block-Jacobi preconditioner, falling
+// back on CHOLMOD for a system it does not solve.
+#pragma once
+
+#include "solver/linear_solver.hpp"
+
+#include <memory>
+
+namespace nmm {
+
+/// Tuning of PcgSolver.
+struct PcgOptions {
+  /// A solve has converged when the residual's 2-norm is at most this fraction of the
+  /// right-hand side's.
+  double tolerance = 1e-10;
+  /// Iterations after which a solve gives up and is done by CHOLMOD instead.
+  int max_iterations = 200;
+};
+
+/// Preconditioned conjugate gradients (DESIGN.md "Measured facts": in dynamic steps the
+/// inertia term M 2/dt^2 makes the step matrix well conditioned, and a few iterations beat a
+/// factorisation). The preconditioner is the inverse of the matrix's diagonal blocks, one
+/// block per run of consecutive unknowns with the same pattern (the unknowns of one cover or
+/// one DDA block). A solve starts from the solution vector it is given when it has the
+/// system's size (the caller's guess) and from zero otherwise.
+///
+/// factorize() copies the values (the caller may change its matrix afterwards) and inverts
+/// the diagonal blocks. A solve that does not reach the tolerance in max_iterations, or
+/// meets a direction of non-positive curvature, is done again by CHOLMOD, and so is every
+/// later one until the next analyze() or start_step(): a pattern whose systems conjugate
+/// gradients do not solve (a static step, stiff springs on light blocks) costs the futile
+/// iterations once a step.
+/// A matrix that is not positive definite is reported as CHOLMOD reports it (with
+/// failed_column()).
+class PcgSolver final : public LinearSolver {
+public:
+  explicit PcgSolver(PcgOptions options = {});
+  ~PcgSolver() override;
+
+  [[nodiscard]] SolveStatus analyze(const SparseMatrix& matrix) override;
+  [[nodiscard]] SolveStatus factorize(const SparseMatrix& matrix) override;
+  [[nodiscard]] SolveStatus solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& solution) override;
+  [[nodiscard]] const SolverCounters& counters() const override;
+  [[nodiscard]] std::string name() const override;
+  [[nodiscard]] long failed_column() const override;
+  /// Conjugate gradients are tried again on a pattern they gave up on in the last step.
+  void start_step() override;
+
+  /// Sizes of the preconditioner's diagonal blocks from the last analyze(), in order.
+  [[nodiscard]] std::vector<int> block_sizes() const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+} // namespace nmm

@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: MIT
+#include "solver/cholmod_solver.hpp"
+#include "solver/pcg_solver.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace nmm {
+namespace {
+
+// A row of `blocks` blocks of `size` unknowns, as the step matrix of DDA blocks in a row:
+// each block's own mass matrix (a dense SPD one, `mass` times about the identity), and
+// between neighbours a spring `spring` [C, -C; -C, C] that couples all their unknowns (C =
+// 0.9 I + 0.1 ones / size, SPD). Full symmetric storage; `spring` / `mass` sets the
+// condition number (about 4 spring / mass + 1).
+SparseMatrix block_row(int blocks, int size, double mass, double spring) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int b = 0; b < blocks; ++b) {
+    for (int i = 0; i < size; ++i) {
+      for (int j = 0; j < size; ++j) {
+        const int r = b * size + i;
+        const int c = b * size + j;
+        entries.emplace_back(r, c, i == j ? mass * (1.0 + 0.1 * i) : 0.05 * mass);
+        if (b + 1 < blocks) {
+          const double coupling = spring * ((i == j ? 0.9 : 0.0) + 0.1 / size);
+          entries.emplace_back(r, c, coupling);
+          entries.emplace_back(r + size, c + size, coupling);
+          entries.emplace_back(r, c + size, -coupling);
+          entries.emplace_back(r + size, c, -coupling);
+        }
+      }
+    }
+  }
+  const int n = blocks * size;
+  SparseMatrix a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  a.makeCompressed();
+  return a;
+}
+
+SparseMatrix upper(const SparseMatrix& full) {
+  SparseMatrix a = full.triangularView<Eigen::Upper>();
+  a.makeCompressed();
+  return a;
+}
+
+Eigen::VectorXd cholmod_solution(const SparseMatrix& a, const Eigen::VectorXd& rhs) {
+  CholmodSolver direct;
+  EXPECT_EQ(direct.analyze(a), SolveStatus::ok);
+  EXPECT_EQ(direct.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd x;
+  EXPECT_EQ(direct.solve(rhs, x), SolveStatus::ok);
+  return x;
+}
+
+TEST(PcgSolver, SolvesABlockSystemAsCholmodDoes) {
+  // Springs 20 times the mass term: a condition number of about 80 (the block-Jacobi
+  // preconditioned one lower), so the residual tolerance 1e-12 bounds the error by 1e-10 of
+  // the solution, and CHOLMOD's own rounding is 1e-14 of it.
+  const SparseMatrix a = upper(block_row(200, 6, 1.0, 20.0));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
+  PcgSolver solver(PcgOptions{.tolerance = 1e-12, .max_iterations = 1000});
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd x;
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  const Eigen::VectorXd expected = cholmod_solution(a, rhs);
+  EXPECT_LT((x - expected).norm(), 1e-10 * expected.norm());
+  EXPECT_EQ(solver.block_sizes(), std::vector<int>(200, 6));
+  EXPECT_GT(solver.counters().iterations, 0);
+  EXPECT_EQ(solver.counters().fallbacks, 0);
+  EXPECT_EQ(solver.counters().factorizations, 0);
+  EXPECT_EQ(solver.counters().solves, 1);
+}
+
+TEST(PcgSolver, ReadsOnlyTheUpperTriangle) {
+  SparseMatrix full = block_row(30, 6, 1.0, 5.0);
+  const SparseMatrix a = upper(full);
+  for (int k = 0; k < full.outerSize(); ++k) { // a lower triangle that would be wrong
+    for (SparseMatrix::InnerIterator it(full, k); it; ++it) {
+      if (it.row() > it.col())
+        it.valueRef() = 1e6;
+    }
+  }
+  const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(a.rows());
+  Eigen::VectorXd from_upper;
+  Eigen::VectorXd from_full;
+  auto solve = [&rhs](const SparseMatrix& matrix, Eigen::VectorXd& x) {
+    PcgSolver solver;
+    ASSERT_EQ(solver.analyze(matrix), SolveStatus::ok);
+    ASSERT_EQ(solver.factorize(matrix), SolveStatus::ok);
+    ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+    EXPECT_EQ(solver.counters().fallbacks, 0);
+  };
+  solve(a, from_upper);
+  solve(full, from_full);
+  EXPECT_EQ(from_upper, from_full); // the same arithmetic, to the last bit
+}
+
+TEST(PcgSolver, StartsFromTheGuessItIsGiven) {
+  const SparseMatrix a = upper(block_row(50, 2, 1.0, 10.0));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), 1.0, 3.0);
+  PcgSolver solver;
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd x;
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  const long from_zero = solver.counters().iterations;
+  EXPECT_GT(from_zero, 3);
+  // A guess that solves the system already (to rounding) costs no iteration.
+  const Eigen::VectorXd first = x;
+  Eigen::VectorXd exact = cholmod_solution(a, rhs);
+  const Eigen::VectorXd exact_guess = exact;
+  ASSERT_EQ(solver.solve(rhs, exact), SolveStatus::ok);
+  EXPECT_EQ(solver.counters().iterations, from_zero);
+  EXPECT_EQ(exact, exact_guess);
+  // A guess of the wrong size (or none) starts from zero: the same iterations again.
+  Eigen::VectorXd wrong_size = Eigen::VectorXd::Ones(3);
+  ASSERT_EQ(solver.solve(rhs, wrong_size), SolveStatus::ok);
+  EXPECT_EQ(solver.counters().iterations, 2 * from_zero);
+  EXPECT_EQ(wrong_size, first);
+  // A zero right-hand side has the zero solution, whatever the guess.
+  Eigen::VectorXd guess = Eigen::VectorXd::Ones(a.rows());
+  ASSERT_EQ(solver.solve(Eigen::VectorXd::Zero(a.rows()), guess), SolveStatus::ok);
+  EXPECT_EQ(guess, Eigen::VectorXd::Zero(a.rows()));
+}
+
+TEST(PcgSolver, HandsWhatItDoesNotSolveToCholmodForTheRestOfTheStep) {
+  // Springs 1e4 times the mass term: far more than 3 iterations.
+  const SparseMatrix a = upper(block_row(100, 3, 1.0, 1e4));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -2.0, 1.0);
+  PcgSolver solver(PcgOptions{.tolerance = 1e-12, .max_iterations = 3});
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd x;
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  // CHOLMOD's answer to the last bit: the fallback is its solve, nothing mixed in.
+  EXPECT_EQ(x, cholmod_solution(a, rhs));
+  EXPECT_EQ(solver.counters().iterations, 3);
+  EXPECT_EQ(solver.counters().fallbacks, 1);
+  EXPECT_EQ(solver.counters().factorizations, 1);
+  // The next solve with the same values uses that factor: no iteration, no factorisation.
+  ASSERT_EQ(solver.solve(2.0 * rhs, x), SolveStatus::ok);
+  EXPECT_EQ(x, cholmod_solution(a, 2.0 * rhs));
+  EXPECT_EQ(solver.counters().iterations, 3);
+  EXPECT_EQ(solver.counters().factorizations, 1);
+  EXPECT_EQ(solver.counters().solves, 2);
+  // New values of the same pattern in the same step: CHOLMOD at once, without futile
+  // iterations.
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  EXPECT_EQ(solver.counters().iterations, 3);
+  EXPECT_EQ(solver.counters().fallbacks, 1);
+  EXPECT_EQ(solver.counters().factorizations, 2);
+  // So does a new step: a pattern's systems go back to conjugate gradients.
+  solver.start_step();
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd next_step;
+  ASSERT_EQ(solver.solve(rhs, next_step), SolveStatus::ok);
+  EXPECT_EQ(solver.counters().iterations, 6);
+  EXPECT_EQ(solver.counters().fallbacks, 2);
+  EXPECT_EQ(solver.counters().factorizations, 3);
+  // A new analysis tries conjugate gradients again (from zero, as before).
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd from_zero;
+  ASSERT_EQ(solver.solve(rhs, from_zero), SolveStatus::ok);
+  EXPECT_EQ(solver.counters().iterations, 9);
+  EXPECT_EQ(solver.counters().fallbacks, 3);
+  EXPECT_EQ(solver.counters().factorizations, 4);
+}
+
+TEST(PcgSolver, ReportsAMatrixThatIsNotPositiveDefiniteWhereCholmodDoes) {
+  // A diagonal block that is not positive definite: factorize() says so at once.
+  SparseMatrix a = upper(block_row(20, 6, 1.0, 1.0));
+  a.coeffRef(61, 61) = -1.0;
+  PcgSolver solver;
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  EXPECT_EQ(solver.factorize(a), SolveStatus::not_positive_definite);
+  CholmodSolver direct;
+  ASSERT_EQ(direct.analyze(a), SolveStatus::ok);
+  ASSERT_EQ(direct.factorize(a), SolveStatus::not_positive_definite);
+  EXPECT_EQ(solver.failed_column(), direct.failed_column());
+  EXPECT_GE(solver.failed_column(), 0);
+  Eigen::VectorXd x;
+  EXPECT_NE(solver.solve(Eigen::VectorXd::Ones(a.rows()), x), SolveStatus::ok);
+
+  // Positive diagonal blocks, an indefinite whole (a ring of springs, less 0.01 on the
+  // diagonal: eigenvalues -0.01 to 3.99): the solve finds it, through CHOLMOD.
+  const int n = 40;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, 2.0 - 0.01);
+    entries.emplace_back(std::min(i, (i + 1) % n), std::max(i, (i + 1) % n), -1.0);
+  }
+  SparseMatrix ring(n, n);
+  ring.setFromTriplets(entries.begin(), entries.end());
+  ring.makeCompressed();
+  PcgSolver ring_solver;
+  ASSERT_EQ(ring_solver.analyze(ring), SolveStatus::ok);
+  ASSERT_EQ(ring_solver.factorize(ring), SolveStatus::ok);
+  EXPECT_EQ(ring_solver.solve(Eigen::VectorXd::Ones(n), x), SolveStatus::not_positive_definite);
+  EXPECT_GE(ring_solver.failed_column(), 0);
+  EXPECT_EQ(ring_solver.counters().fallbacks, 1);
+}
+
+TEST(PcgSolver, APatternWithoutADiagonalEntryIsSingularAsCholmodSays) {
+  SparseMatrix a(3, 3);
+  a.insert(0, 0) = 1.0;
+  a.insert(0, 2) = 0.5;
+  a.insert(2, 2) = 1.0; // no (1, 1)
+  a.makeCompressed();
+  PcgSolver solver;
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  EXPECT_EQ(solver.factorize(a), SolveStatus::not_positive_definite);
+  EXPECT_EQ(solver.failed_column(), 1);
+}
+
+} // namespace
+} // namespace nmm
