@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: MIT
 #include "contact/contact_system.hpp"
 
+#include "contact/key_set.hpp"
 #include "mesh/error.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <set>
 #include <span>
 #include <sstream>
 
@@ -315,11 +315,13 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   // Angle contacts already made, by (vertex, entrance line): two candidates can end on the
   // same pair (an angle-to-edge contact and an angle-to-angle one whose line is that edge),
   // and one spring is all the pair may have.
-  std::set<std::pair<int, int>> angle_pairs;
+  KeySet angle_pairs(candidates.size());
 
   points_.clear();
   groups_.clear();
   gauss_ = model.order == 0 ? 2 : 3;
+  std::vector<double> g0; // per candidate: its gap at the start of the step (kept storage)
+  std::vector<std::pair<double, double>> offsets; // per candidate: a carried lock's anchors
   for (const ContactCandidate& c : candidates) {
     Group g;
     g.key = c.key();
@@ -348,13 +350,14 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
         p.master = c.alternative_master;
       }
     }
-    if (!g.edge && !angle_pairs.insert({p.slave_edge, p.master}).second)
+    if (!g.edge && !angle_pairs.insert(static_cast<std::uint64_t>(at(p.slave_edge)) << 32U |
+                                       static_cast<std::uint64_t>(at(p.master))))
       continue;
     const Point2& ma = boundary_.position[at(p.master)];
     const Point2& mb = boundary_.position[at(boundary_.next[at(p.master)])];
     const Point2 tangent = (mb - ma).normalized();
     const Point2 normal = perp(mb - ma).normalized();
-    std::vector<double> g0; // gap at the start of the step: at the point, or along the overlap
+    g0.clear(); // gap at the start of the step: at the point, or along the overlap
     if (!g.edge) {
       const int v = p.slave_edge;
       p.slave = boundary_.position[at(v)];
@@ -434,7 +437,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     // is now, on its own entrance line (not the candidate's: an angle-to-angle contact's
     // spring may be on the alternative line, and an anchor measured along the other edge put
     // millimetres of shear into the spring).
-    std::vector<std::pair<double, double>> offsets;
+    offsets.clear();
     if (same) {
       const Point2& a = boundary_.position[at(p.slave_edge)];
       const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "contact/detection.hpp"
 
+#include "contact/key_set.hpp"
 #include "mesh/error.hpp"
 
 #include <algorithm>
@@ -8,7 +9,6 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
-#include <unordered_set>
 #include <utility>
 
 namespace nmm {
@@ -86,10 +86,13 @@ public:
   Detector(const ContactBoundary& boundary,
            const DetectionOptions& options,
            const std::vector<std::uint64_t>& keep)
-      : b_(boundary), options_(options), keep_(keep.begin(), keep.end()),
-        rounding_(rounding_length(boundary)) {
+      : b_(boundary), options_(options), keep_(keep.size()), rounding_(rounding_length(boundary)) {
+    for (const std::uint64_t key : keep)
+      keep_.insert(key);
     // Every vertex's angle once (an atan2): the tests ask for it many times per vertex.
     const int n = b_.n_vertices();
+    for (KeySet* set : {&seen_, &edge_pairs_, &vertex_pairs_}) // about one key per vertex
+      set->reserve(at(n));
     angle_.resize(at(n));
     flat_.resize(at(n));
     for (int v = 0; v < n; ++v) {
@@ -199,7 +202,7 @@ private:
     return pairs;
   }
 
-  bool kept(const ContactCandidate& c) const { return keep_.count(c.key()) != 0; }
+  bool kept(const ContactCandidate& c) const { return keep_.contains(c.key()); }
 
   /// A vertex on a straight boundary (a point where the boundary crosses a math edge, or a
   /// vertex of a gently curved outline): part of its edges, not an angle. Its contacts are
@@ -209,7 +212,7 @@ private:
   Wedge wedge(int v) const { return nmm::wedge(b_, v, angle_[at(v)]); }
 
   void add(const ContactCandidate& c) {
-    if (seen_.insert(c.key()).second)
+    if (seen_.insert(c.key()))
       result_.push_back(c);
   }
 
@@ -256,7 +259,7 @@ private:
       return;
     if (low < -options_.penetration && !kept(candidate))
       return;
-    if (edge_pairs_.insert(pair_key(e, f)).second) {
+    if (edge_pairs_.insert(pair_key(e, f))) {
       ++edge_edge_;
       add(candidate);
     }
@@ -265,7 +268,7 @@ private:
   /// Whether vertex v's contact against edge m is part of an edge-to-edge contact.
   bool covered(int v, int m) const {
     for (const int s : {v, b_.previous[at(v)]}) {
-      if (edge_pairs_.count(pair_key(s, m)) != 0)
+      if (edge_pairs_.contains(pair_key(s, m)))
         return true;
     }
     return false;
@@ -274,7 +277,7 @@ private:
   bool covered_pair(int v, int w) const {
     for (const int s : {v, b_.previous[at(v)]}) {
       for (const int f : {w, b_.previous[at(w)]}) {
-        if (edge_pairs_.count(pair_key(s, f)) != 0)
+        if (edge_pairs_.contains(pair_key(s, f)))
           return true;
       }
     }
@@ -372,7 +375,7 @@ private:
       return;
     if (b_.block[at(v)] == b_.block[at(w)] && !faces_void(v, w))
       return;
-    if (!vertex_pairs_.insert(pair_key(v, w)).second)
+    if (!vertex_pairs_.insert(pair_key(v, w)))
       return;
     if (flat(v) && flat(w))
       return; // straight against straight: edge-to-edge contacts, if facing
@@ -465,13 +468,13 @@ private:
 
   const ContactBoundary& b_;
   const DetectionOptions& options_;
-  std::unordered_set<std::uint64_t> keep_;
+  KeySet keep_;
   double rounding_ = 0.0; ///< rounding_length() of the boundary
-  std::unordered_set<std::uint64_t> seen_;
-  std::vector<double> angle_;                      ///< b_.angle(v) of every vertex
-  std::vector<unsigned char> flat_;                ///< flat(v) of every vertex
-  std::unordered_set<std::uint64_t> edge_pairs_;   ///< pair_key() of the edge-to-edge contacts
-  std::unordered_set<std::uint64_t> vertex_pairs_; ///< pair_key() of the angle pairs tested
+  KeySet seen_;
+  std::vector<double> angle_;       ///< b_.angle(v) of every vertex
+  std::vector<unsigned char> flat_; ///< flat(v) of every vertex
+  KeySet edge_pairs_;               ///< pair_key() of the edge-to-edge contacts
+  KeySet vertex_pairs_;             ///< pair_key() of the angle pairs tested
   std::vector<ContactCandidate> result_;
   long vertex_edge_ = 0;
   long vertex_vertex_ = 0;
