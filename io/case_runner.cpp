@@ -840,6 +840,9 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   result.max_lock_excess = summary.counters.max_lock_excess;
   result.slides_against_motion = summary.counters.slides_against_motion;
   result.slide_feed_work = summary.counters.slide_feed_work;
+  result.solves = summary.solver_counters.solves;
+  result.cg_iterations = summary.solver_counters.iterations;
+  result.cg_fallbacks = summary.solver_counters.fallbacks;
   result.warnings = summary.warnings;
   return result;
 }

@@ -163,6 +163,11 @@ struct RunResult {
   /// turned back, and the work of that friction along those motions, J (StepperCounters).
   long slides_against_motion = 0;
   double slide_feed_work = 0.0;
+  /// Linear solves, and of them by conjugate gradients ([analysis] solver = "pcg"): their
+  /// iterations and the solves left to CHOLMOD (SolverCounters).
+  long solves = 0;
+  long cg_iterations = 0;
+  long cg_fallbacks = 0;
   /// Work of the loads at the last step run (StepReport::load_work), J; 0 when none ran.
   double load_work = 0.0;
   std::filesystem::path output_dir;

@@ -120,6 +120,15 @@ void write_closing_summary(std::ostream& out, const RunResult& result, long step
     // Halving the time step of the 100-block pile of bench/stress.py cut it 6.6 times.
     out << "; the chatter rule, less with a shorter time step)\n";
   }
+  if (result.cg_iterations > 0 || result.cg_fallbacks > 0) {
+    // [analysis] solver = "pcg": what the conjugate gradients did, and where they did not pay.
+    out << "  linear solves: " << result.solves << " (conjugate gradients: " << result.cg_iterations
+        << " iterations; " << result.cg_fallbacks << " solves left to CHOLMOD)";
+    if (2 * result.cg_fallbacks > result.solves)
+      out << "; most systems were not for conjugate gradients (static steps, stiff springs on "
+             "light blocks): solver = \"cholmod\" is faster for this case";
+    out << '\n';
+  }
   if (result.warnings.empty()) {
     out << "  warnings: none\n";
   } else {

@@ -246,7 +246,8 @@ SolveStatus PcgSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& soluti
   if (!m.factorised || rhs.size() != m.matrix.rows())
     return SolveStatus::failed;
   SolveStatus status = SolveStatus::ok;
-  if (m.direct_factorised) {
+  bool direct = m.direct_factorised;
+  if (direct) {
     status = m.solve_directly(rhs, solution);
   } else {
     const double target = m.options.tolerance * rhs.norm();
@@ -282,11 +283,12 @@ SolveStatus PcgSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& soluti
       // Systems of this pattern are not for conjugate gradients (a static step, stiff springs
       // on light blocks): the step's next ones go to CHOLMOD at once, without the futile
       // iterations.
-      ++m.counters.fallbacks;
-      m.gave_up = true;
+      m.gave_up = direct = true;
       status = m.solve_directly(rhs, solution);
     }
   }
+  if (direct)
+    ++m.counters.fallbacks;
   if (status == SolveStatus::ok)
     ++m.counters.solves;
   return status;

@@ -336,6 +336,7 @@ TEST(Progress, ClosingSummarySaysStatusStepsWarningsAndWhereTheOutputsAre) {
         "results/case.pvd", "results/history.csv", "results/summary.json"})
     EXPECT_NE(text.find(part), std::string::npos) << part << " in\n" << text;
   EXPECT_EQ(text.find("friction:"), std::string::npos) << "no hold, no line";
+  EXPECT_EQ(text.find("linear solves:"), std::string::npos) << "CHOLMOD alone, no line";
 }
 
 TEST(Progress, ClosingSummarySaysWhatTheChatterRuleHeldAtTheLimitOfFriction) {
@@ -358,6 +359,34 @@ TEST(Progress, ClosingSummarySaysWhatTheChatterRuleHeldAtTheLimitOfFriction) {
                            "limit against a motion that turned back (2e+04 J of friction work "
                            "along it, 3.9% of the work of the loads"})
     EXPECT_NE(text.find(part), std::string::npos) << part << " in\n" << text;
+}
+
+TEST(Progress, ClosingSummarySaysWhatConjugateGradientsDidAndWhenCholmodIsFaster) {
+  RunResult result;
+  result.steps = 10;
+  result.solves = 14;
+  result.cg_iterations = 245;
+  std::ostringstream out;
+  write_closing_summary(out, result, 10);
+  EXPECT_NE(out.str().find("linear solves: 14 (conjugate gradients: 245 iterations; 0 solves "
+                           "left to CHOLMOD)\n"),
+            std::string::npos)
+      << out.str();
+  // Most solves left to CHOLMOD (examples/02, a static analysis: every step's first solve).
+  result.solves = 181;
+  result.cg_iterations = 4000;
+  result.cg_fallbacks = 20;
+  std::ostringstream most;
+  write_closing_summary(most, result, 10);
+  EXPECT_EQ(most.str().find("is faster for this case"), std::string::npos) << most.str();
+  result.cg_fallbacks = 100;
+  std::ostringstream left;
+  write_closing_summary(left, result, 10);
+  EXPECT_NE(left.str().find("100 solves left to CHOLMOD); most systems were not for conjugate "
+                            "gradients"),
+            std::string::npos)
+      << left.str();
+  EXPECT_NE(left.str().find("solver = \"cholmod\" is faster for this case"), std::string::npos);
 }
 
 } // namespace
