@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 // Version 2 (2026-11-26): the stepper's counters include friction_terms; version 3, augmentations;
 // version 4 (2026-11-28), locks_beyond_friction and max_lock_excess; version 5 (the same day),
 // slides_against_motion and slide_feed_work; version 6 (2026-11-28), the linear solver's
-// conjugate-gradient iterations and fallbacks, and the last step's accelerations (their
-// first guess).
+// conjugate-gradient iterations and fallbacks, the steps they skip (PcgSolver::carried()),
+// and the last step's accelerations (their first guess).
 constexpr std::string_view magic = "nmm checkpoint, version 6\n";
 constexpr std::int64_t byte_order = 0x0102030405060708;
 

@@ -16,6 +16,9 @@ struct PcgOptions {
   double tolerance = 1e-10;
   /// Iterations after which a solve gives up and is done by CHOLMOD instead.
   int max_iterations = 200;
+  /// Most steps done by CHOLMOD alone after a step conjugate gradients gave up in (the
+  /// number doubles from 1 with each such step and starts again after a step they solve).
+  int max_skipped_steps = 64;
 };
 
 /// Preconditioned conjugate gradients (DESIGN.md "Measured facts": in dynamic steps the
@@ -28,9 +31,10 @@ struct PcgOptions {
 /// factorize() copies the values (the caller may change its matrix afterwards) and inverts
 /// the diagonal blocks. A solve that does not reach the tolerance in max_iterations, or
 /// meets a direction of non-positive curvature, is done again by CHOLMOD, and so is every
-/// later one until the next analyze() or start_step(): a pattern whose systems conjugate
-/// gradients do not solve (a static step, stiff springs on light blocks) costs the futile
-/// iterations once a step.
+/// later one until the next analyze() or start_step(). After a step they gave up in, the
+/// next 1, 2, 4, ... (at most max_skipped_steps) steps are done by CHOLMOD alone: a scene
+/// whose systems conjugate gradients do not solve (static steps, stiff springs on light
+/// blocks) pays the futile iterations in a few steps, not in every one.
 /// A matrix that is not positive definite is reported as CHOLMOD reports it (with
 /// failed_column()).
 class PcgSolver final : public LinearSolver {
@@ -44,8 +48,15 @@ public:
   [[nodiscard]] const SolverCounters& counters() const override;
   [[nodiscard]] std::string name() const override;
   [[nodiscard]] long failed_column() const override;
-  /// Conjugate gradients are tried again on a pattern they gave up on in the last step.
+  /// Conjugate gradients are tried again on a pattern they gave up on in the last step,
+  /// unless the step is one to skip.
   void start_step() override;
+  /// The steps to skip: {the length of the next run of them, the steps of this run still to
+  /// skip, whether the last step was tried, whether it gave up}.
+  [[nodiscard]] std::vector<long> carried() const override;
+  [[nodiscard]] bool restore_carried(const std::vector<long>& carried) override;
+  /// Whether the step begun last goes to CHOLMOD without conjugate gradients.
+  [[nodiscard]] bool skipping() const;
 
   /// Sizes of the preconditioner's diagonal blocks from the last analyze(), in order.
   [[nodiscard]] std::vector<int> block_sizes() const;

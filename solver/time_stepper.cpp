@@ -906,6 +906,8 @@ void TimeStepper::save_state(StateWriter& out) const {
   out.put(static_cast<std::int64_t>(solver.solves));
   out.put(static_cast<std::int64_t>(solver.iterations));
   out.put(static_cast<std::int64_t>(solver.fallbacks));
+  const std::vector<long> carried = impl_->solver->carried();
+  out.put(std::vector<int>(carried.begin(), carried.end()));
   out.put_count(warnings_.size());
   for (const std::string& w : warnings_)
     out.put(w);
@@ -966,6 +968,10 @@ void TimeStepper::load_state(StateReader& in) {
   impl_->restored_counters.solves = static_cast<long>(in.integer());
   impl_->restored_counters.iterations = static_cast<long>(in.integer());
   impl_->restored_counters.fallbacks = static_cast<long>(in.integer());
+  const std::vector<int> carried = in.integers();
+  if (!impl_->solver->restore_carried(std::vector<long>(carried.begin(), carried.end())))
+    in.fail("its linear solver's state (" + std::to_string(carried.size()) +
+            " numbers) is not one of " + impl_->solver->name());
   warnings_.resize(in.count());
   for (std::string& w : warnings_)
     w = in.text();

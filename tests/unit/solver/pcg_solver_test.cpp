@@ -145,22 +145,91 @@ TEST(PcgSolver, HandsWhatItDoesNotSolveToCholmodForTheRestOfTheStep) {
   EXPECT_EQ(solver.counters().iterations, 3);
   EXPECT_EQ(solver.counters().fallbacks, 3);
   EXPECT_EQ(solver.counters().factorizations, 2);
-  // So does a new step: a pattern's systems go back to conjugate gradients.
+  // The next step is done by CHOLMOD alone (a step they gave up in is followed by one
+  // skipped), the one after goes back to conjugate gradients.
   solver.start_step();
+  EXPECT_TRUE(solver.skipping());
   ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
   Eigen::VectorXd next_step;
   ASSERT_EQ(solver.solve(rhs, next_step), SolveStatus::ok);
-  EXPECT_EQ(solver.counters().iterations, 6);
+  EXPECT_EQ(solver.counters().iterations, 3);
   EXPECT_EQ(solver.counters().fallbacks, 4);
   EXPECT_EQ(solver.counters().factorizations, 3);
+  solver.start_step();
+  EXPECT_FALSE(solver.skipping());
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd no_guess;
+  ASSERT_EQ(solver.solve(rhs, no_guess), SolveStatus::ok);
+  EXPECT_EQ(solver.counters().iterations, 6);
+  EXPECT_EQ(solver.counters().fallbacks, 5);
+  EXPECT_EQ(solver.counters().factorizations, 4);
   // A new analysis tries conjugate gradients again (from zero, as before).
   ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
   ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
   Eigen::VectorXd from_zero;
   ASSERT_EQ(solver.solve(rhs, from_zero), SolveStatus::ok);
   EXPECT_EQ(solver.counters().iterations, 9);
-  EXPECT_EQ(solver.counters().fallbacks, 5);
-  EXPECT_EQ(solver.counters().factorizations, 4);
+  EXPECT_EQ(solver.counters().fallbacks, 6);
+  EXPECT_EQ(solver.counters().factorizations, 5);
+}
+
+// One step of a run: start_step(), then the step's system solved from no guess.
+// @return whether conjugate gradients were tried in it.
+bool run_step(PcgSolver& solver, const SparseMatrix& a, const Eigen::VectorXd& rhs) {
+  solver.start_step();
+  const long before = solver.counters().iterations;
+  EXPECT_EQ(solver.factorize(a), SolveStatus::ok);
+  Eigen::VectorXd x;
+  EXPECT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  return solver.counters().iterations > before;
+}
+
+TEST(PcgSolver, SkipsMoreStepsAfterEachStepItGaveUpInAndNoneAfterOneItSolved) {
+  // The same pattern with springs 1e4 times the mass term (far more than 3 iterations) and
+  // 1e-6 times it (2 iterations: the preconditioner is nearly the inverse).
+  const SparseMatrix hard = upper(block_row(100, 3, 1.0, 1e4));
+  const SparseMatrix easy = upper(block_row(100, 3, 1.0, 1e-6));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(hard.rows(), -2.0, 1.0);
+  const PcgOptions options{.tolerance = 1e-12, .max_iterations = 3, .max_skipped_steps = 4};
+  PcgSolver solver(options);
+  ASSERT_EQ(solver.analyze(hard), SolveStatus::ok);
+  std::vector<int> tried;
+  for (int step = 1; step <= 20; ++step) {
+    if (run_step(solver, hard, rhs))
+      tried.push_back(step);
+  }
+  // Given up in steps 1, 3, 6, 11, 16: then 1, 2, 4 and (at most) 4 steps skipped.
+  EXPECT_EQ(tried, (std::vector<int>{1, 3, 6, 11, 16}));
+  EXPECT_EQ(solver.counters().fallbacks, 20);
+  EXPECT_EQ(solver.counters().iterations, 15);
+  // A checkpoint between steps: a solver restored from it skips the same steps.
+  PcgSolver restored(options);
+  ASSERT_TRUE(restored.restore_carried(solver.carried()));
+  ASSERT_EQ(restored.analyze(hard), SolveStatus::ok);
+  // Step 21 is tried and given up in (4 steps skipped), 26 solves the easy system: after it
+  // nothing is skipped, and the next give-up (27) skips one step again.
+  std::vector<int> tried_after;
+  std::vector<int> tried_restored;
+  for (int step = 21; step <= 29; ++step) {
+    const SparseMatrix& a = step == 26 ? easy : hard;
+    if (run_step(solver, a, rhs))
+      tried_after.push_back(step);
+    if (run_step(restored, a, rhs))
+      tried_restored.push_back(step);
+  }
+  EXPECT_EQ(tried_after, (std::vector<int>{21, 26, 27, 29}));
+  EXPECT_EQ(tried_restored, tried_after);
+  EXPECT_EQ(solver.carried(), restored.carried());
+  // What is not a solver's state is refused; a checkpoint of a run by CHOLMOD (nothing
+  // carried) skips nothing.
+  PcgSolver other(options);
+  EXPECT_FALSE(other.restore_carried({1, 2, 0, 0})); // more left than the run is long
+  EXPECT_FALSE(other.restore_carried({1, 0, 2, 0}));
+  EXPECT_FALSE(other.restore_carried({-1, 0, 0, 0}));
+  EXPECT_FALSE(other.restore_carried({1, 0, 0}));
+  EXPECT_TRUE(other.restore_carried({}));
+  ASSERT_EQ(other.analyze(hard), SolveStatus::ok);
+  EXPECT_TRUE(run_step(other, hard, rhs));
 }
 
 TEST(PcgSolver, ReportsAMatrixThatIsNotPositiveDefiniteWhereCholmodDoes) {
