@@ -256,23 +256,43 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   // In the order of their keys, not of the hash table: which of two carried contacts a
   // transfer finds first must not depend on the table's history (a restarted run has
   // another), or a restart would not continue the run exactly.
-  std::vector<std::uint64_t> keep;
-  keep.reserve(carried_.size());
-  for (const auto& [key, state] : carried_)
-    keep.push_back(key);
+  std::vector<std::uint64_t> keep = carried_keys_;
   std::sort(keep.begin(), keep.end());
   const std::vector<ContactCandidate> candidates =
       detect_contacts(boundary_, detection, keep, &counters_.detection);
 
   // Contacts found by the slave or the master of a carried contact, for the transfer of a
-  // contact whose slave moved on to the next edge (Shi 3.3).
-  std::unordered_multimap<int, std::uint64_t> carried_by_slave;
-  std::unordered_multimap<int, std::uint64_t> carried_by_master;
+  // contact whose slave moved on to the next edge (Shi 3.3): (edge, key, state) sorted by
+  // edge, and for one edge by decreasing key (the order an std::unordered_multimap filled in
+  // increasing key order gave, which decides between two candidates for a transfer: kept so
+  // that the runs stay what they were).
+  struct ByEdge {
+    int edge;
+    std::uint64_t key;
+    const Carried* state;
+    bool operator<(const ByEdge& other) const {
+      return edge != other.edge ? edge < other.edge : key > other.key;
+    }
+  };
+  std::vector<ByEdge> carried_by_slave;
+  std::vector<ByEdge> carried_by_master;
+  carried_by_slave.reserve(keep.size());
+  carried_by_master.reserve(keep.size());
   for (const std::uint64_t key : keep) {
-    const Carried& state = carried_.at(key);
-    carried_by_slave.emplace(state.slave, key);
-    carried_by_master.emplace(state.master, key);
+    const Carried* state = carried_at(key);
+    carried_by_slave.push_back({state->slave, key, state});
+    carried_by_master.push_back({state->master, key, state});
   }
+  std::sort(carried_by_slave.begin(), carried_by_slave.end());
+  std::sort(carried_by_master.begin(), carried_by_master.end());
+  auto on_edge = [](const std::vector<ByEdge>& list, int edge) {
+    const auto first = std::lower_bound(list.begin(), list.end(), edge,
+                                        [](const ByEdge& e, int value) { return e.edge < value; });
+    auto last = first;
+    while (last != list.end() && last->edge == edge)
+      ++last;
+    return std::span<const ByEdge>(first, last);
+  };
   // The carried state of the contact of @p slave against @p master: the one stored under
   // the same key, or another that had the same slave and master (an angle-to-angle contact
   // whose candidate changed), or else one whose slave moved on from an adjacent master
@@ -284,16 +304,15 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       return boundary_.next[at(e)] == f || boundary_.next[at(f)] == e;
     };
     const Carried* moved = nullptr;
-    if (const auto it = carried_.find(key); it != carried_.end()) {
-      *identical = it->second.slave == slave && it->second.master == master;
-      if (*identical || !closed(it->second.mode))
-        return &it->second;
-      moved = &it->second; // the same contact on its other entrance line
+    if (const Carried* same = carried_at(key); same != nullptr) {
+      *identical = same->slave == slave && same->master == master;
+      if (*identical || !closed(same->mode))
+        return same;
+      moved = same; // the same contact on its other entrance line
     }
-    auto [s0, s1] = carried_by_slave.equal_range(slave);
-    for (auto it = s0; it != s1; ++it) {
-      const Carried& state = carried_.at(it->second);
-      if (!closed(state.mode) || is_edge_pair(it->second) != edge)
+    for (const ByEdge& e : on_edge(carried_by_slave, slave)) {
+      const Carried& state = *e.state;
+      if (!closed(state.mode) || is_edge_pair(e.key) != edge)
         continue;
       if (state.master == master) {
         *identical = true;
@@ -304,10 +323,9 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     }
     if (moved != nullptr || !edge)
       return moved;
-    auto [m0, m1] = carried_by_master.equal_range(master);
-    for (auto it = m0; it != m1; ++it) {
-      const Carried& state = carried_.at(it->second);
-      if (closed(state.mode) && is_edge_pair(it->second) && adjacent(state.slave, slave))
+    for (const ByEdge& e : on_edge(carried_by_master, master)) {
+      const Carried& state = *e.state;
+      if (closed(state.mode) && is_edge_pair(e.key) && adjacent(state.slave, slave))
         return &state;
     }
     return nullptr;
@@ -441,7 +459,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     if (same) {
       const Point2& a = boundary_.position[at(p.slave_edge)];
       const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
-      for (const auto& [u, anchor] : state->anchors) {
+      for (const auto& [u, anchor] : anchors_of(*state)) {
         const Point2 slave = g.edge ? Point2(a + u * (d - a)) : a;
         offsets.emplace_back(u, anchor - projection(p.master, slave));
       }
@@ -1135,8 +1153,41 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
   return update;
 }
 
-void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
+const ContactSystem::Carried* ContactSystem::carried_at(std::uint64_t key) const {
+  const int k = carried_index_.find(key);
+  return k == KeyIndex::none ? nullptr : &carried_[at(k)];
+}
+
+std::span<const std::pair<double, double>> ContactSystem::anchors_of(const Carried& state) const {
+  return {carried_anchors_.data() + state.first_anchor, at(state.n_anchors)};
+}
+
+void ContactSystem::carry(std::uint64_t key,
+                          Carried state,
+                          std::span<const std::pair<double, double>> anchors) {
+  state.first_anchor = static_cast<int>(carried_anchors_.size());
+  state.n_anchors = static_cast<int>(anchors.size());
+  carried_anchors_.insert(carried_anchors_.end(), anchors.begin(), anchors.end());
+  const auto k = static_cast<int>(carried_.size());
+  if (carried_index_.insert(key, k)) {
+    carried_.push_back(state);
+    carried_keys_.push_back(key);
+  } else { // the key carried already: the new state replaces it
+    carried_[at(carried_index_.find(key))] = state;
+  }
+}
+
+void ContactSystem::clear_carried() {
   carried_.clear();
+  carried_keys_.clear();
+  carried_index_.clear();
+  carried_anchors_.clear();
+}
+
+void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
+  clear_carried();
+  carried_index_.reserve(groups_.size());
+  std::vector<std::pair<double, double>> anchors;
   for (const Group& g : groups_) {
     const ContactPoint& lead = points_[at(g.first)];
     // Closed contacts carry their state; an open one that penetrates (held open by the
@@ -1154,6 +1205,7 @@ void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
     // An open contact's offset follows its gap up (it never grows: a permanent overlap is
     // one the springs found, not one they make).
     state.offset = std::min(0.0, std::max(lead.offset, lead.gap));
+    anchors.clear();
     for (int q = 0; q < g.count; ++q) {
       const ContactPoint& p = points_[at(g.first + q)];
       state.normal += p.normal_force;
@@ -1168,9 +1220,9 @@ void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
                              .norm();
         anchor = p.anchor + (k.s0 + k.tangential(raw)) / l;
       }
-      state.anchors.emplace_back(p.u, anchor);
+      anchors.emplace_back(p.u, anchor);
     }
-    carried_[g.key] = std::move(state);
+    carry(g.key, state, anchors);
   }
 }
 
@@ -1219,14 +1271,11 @@ std::string ContactSystem::describe(int i) const {
 
 void ContactSystem::save_state(StateWriter& out) const {
   out.section("CONT");
-  std::vector<std::uint64_t> keys;
-  keys.reserve(carried_.size());
-  for (const auto& [key, state] : carried_)
-    keys.push_back(key);
+  std::vector<std::uint64_t> keys = carried_keys_;
   std::sort(keys.begin(), keys.end());
   out.put_count(keys.size());
   for (const std::uint64_t key : keys) {
-    const Carried& state = carried_.at(key);
+    const Carried& state = *carried_at(key);
     out.put(static_cast<std::int64_t>(key));
     out.put(static_cast<std::int64_t>(state.slave));
     out.put(static_cast<std::int64_t>(state.master));
@@ -1234,8 +1283,8 @@ void ContactSystem::save_state(StateWriter& out) const {
     out.put(static_cast<std::int64_t>(state.slide_sign));
     out.put(state.normal);
     out.put(state.offset);
-    out.put_count(state.anchors.size());
-    for (const auto& [u, anchor] : state.anchors) {
+    out.put_count(at(state.n_anchors));
+    for (const auto& [u, anchor] : anchors_of(state)) {
       out.put(u);
       out.put(anchor);
     }
@@ -1268,8 +1317,9 @@ void ContactSystem::load_state(StateReader& in) {
       in.fail("a contact names edge " + std::to_string(e) + " of " + std::to_string(n_edges));
     return static_cast<int>(e);
   };
-  carried_.clear();
+  clear_carried();
   const std::size_t n = in.count();
+  std::vector<std::pair<double, double>> anchors;
   for (std::size_t k = 0; k < n; ++k) {
     const auto key = static_cast<std::uint64_t>(in.integer());
     Carried state;
@@ -1282,12 +1332,12 @@ void ContactSystem::load_state(StateReader& in) {
     state.slide_sign = static_cast<int>(in.integer());
     state.normal = in.real();
     state.offset = in.real();
-    state.anchors.resize(in.count());
-    for (auto& [u, anchor] : state.anchors) {
+    anchors.resize(in.count());
+    for (auto& [u, anchor] : anchors) {
       u = in.real();
       anchor = in.real();
     }
-    carried_[key] = std::move(state);
+    carry(key, state, anchors);
   }
   broken_.clear();
   const std::size_t n_broken = in.count();

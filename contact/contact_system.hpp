@@ -5,12 +5,14 @@
 #pragma once
 
 #include "contact/detection.hpp"
+#include "contact/key_set.hpp"
 #include "manifold/model.hpp"
 
 #include <Eigen/Core>
 
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -340,10 +342,19 @@ private:
     int slide_sign = 0;
     double normal = 0.0; ///< resultant normal force
     double offset = 0.0; ///< ContactPoint::offset of an angle contact
-    /// (u, anchor) of every point: the anchors of a locked pair as a function of the slave
-    /// material point.
-    std::vector<std::pair<double, double>> anchors;
+    /// (u, anchor) of every point, the anchors of a locked pair as a function of the slave
+    /// material point: carried_anchors_[first_anchor ... first_anchor + n_anchors).
+    int first_anchor = 0;
+    int n_anchors = 0;
   };
+  /// The state carried under @p key, or null.
+  [[nodiscard]] const Carried* carried_at(std::uint64_t key) const;
+  /// The anchors of a carried state.
+  [[nodiscard]] std::span<const std::pair<double, double>> anchors_of(const Carried& state) const;
+  /// Stores @p state with @p anchors under @p key (replacing what a key carried already).
+  void carry(std::uint64_t key, Carried state, std::span<const std::pair<double, double>> anchors);
+  /// Forgets every carried state (keeping the storage).
+  void clear_carried();
 
   /// The kinematics of @p p into @p k (its storage reused: a slot's are computed many times
   /// a step).
@@ -402,8 +413,14 @@ private:
     std::vector<double> hs;
   };
   mutable KinematicsWork work_;
-  /// Closed contacts of the last step, by key.
-  std::unordered_map<std::uint64_t, Carried> carried_;
+  /// Closed contacts of the last step: their states and keys in the order end_step() stored
+  /// them, where each key's state is, and the anchors of all of them (flat: a step of 10,004
+  /// DDA blocks carries 60,000 contacts, and a hash map's node and anchor vector per contact
+  /// took 10 % of it).
+  std::vector<Carried> carried_;
+  std::vector<std::uint64_t> carried_keys_;
+  KeyIndex carried_index_;
+  std::vector<std::pair<double, double>> carried_anchors_;
   /// Broken bonds, by contact key (a broken joint never heals).
   std::unordered_map<std::uint64_t, bool> broken_;
   /// What an open-close iteration changes: the state begin_step() left, for restart_step(),

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <random>
+#include <unordered_map>
 #include <unordered_set>
 
 namespace nmm {
@@ -40,6 +41,35 @@ TEST(KeySet, AReservedSetTakesItsKeysAndKeyZero) {
   for (std::uint64_t key = 1; key <= 1000; ++key)
     EXPECT_TRUE(keys.insert(key << 33U));
   EXPECT_EQ(keys.size(), 1001U);
+}
+
+TEST(KeyIndex, HoldsWhatAStandardMapHoldsThroughGrowthAndClearing) {
+  // The same keys as above, each with a value: the first insert of a key sets it, a repeat
+  // keeps it (as std::unordered_map::insert does); cleared, the table holds nothing and is
+  // filled again the same way.
+  std::mt19937_64 random(11);
+  std::uniform_int_distribution<std::uint32_t> index(0, 3000);
+  KeyIndex keys;
+  for (int round = 0; round < 2; ++round) {
+    std::unordered_map<std::uint64_t, int> reference;
+    for (int k = 0; k < 20000; ++k) {
+      const std::uint64_t key = static_cast<std::uint64_t>(index(random)) << 32U | index(random);
+      ASSERT_EQ(keys.insert(key, k), reference.insert({key, k}).second) << k;
+    }
+    EXPECT_EQ(keys.size(), reference.size());
+    for (const auto& [key, value] : reference)
+      ASSERT_EQ(keys.find(key), value);
+    for (int k = 0; k < 20000; ++k) {
+      const std::uint64_t key = static_cast<std::uint64_t>(index(random)) << 32U | index(random);
+      const auto it = reference.find(key);
+      ASSERT_EQ(keys.find(key), it == reference.end() ? KeyIndex::none : it->second) << k;
+    }
+    keys.clear();
+    EXPECT_EQ(keys.size(), 0U);
+    for (const auto& [key, value] : reference)
+      ASSERT_EQ(keys.find(key), KeyIndex::none);
+  }
+  EXPECT_EQ(KeyIndex().find(0), KeyIndex::none); // a new table
 }
 
 } // namespace
