@@ -192,11 +192,29 @@ void Assembler::add_vector(int plan_id, const Eigen::Ref<const Eigen::VectorXd>&
     rhs_[kept_dof[q]] += local[kept[q]];
 }
 
+int Assembler::plan_as_last() {
+  NMM_ASSERT(!plans_.empty(), "a plan to share");
+  plans_.push_back(plans_.back());
+  return static_cast<int>(plans_.size()) - 1;
+}
+
 void Assembler::truncate_plans(int first) {
   NMM_ASSERT(first >= 0 && first <= n_plans(), "no such plan");
   if (first == n_plans())
     return;
-  drop_data_from(plans_[static_cast<std::size_t>(first)]);
+  if (first == 0) {
+    drop_data_from(plans_.front());
+  } else {
+    // What the last kept plan uses ends where its own data end (a plan_as_last() after it
+    // shares them, and may begin before them).
+    const Plan& last = plans_[static_cast<std::size_t>(first) - 1];
+    const auto m = static_cast<std::size_t>(last.n_kept);
+    Plan end;
+    end.kept_begin = last.kept_begin + m;
+    end.position_begin = last.position_begin + m * (m + 1) / 2;
+    end.repeat_begin = last.repeat_end;
+    drop_data_from(end);
+  }
   plans_.resize(static_cast<std::size_t>(first));
 }
 

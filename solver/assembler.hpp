@@ -70,6 +70,10 @@ public:
   /// The same, or -1 (and no plan) when a pair of @p dofs is not in the pattern: one walk
   /// down each column instead of a search for every pair and then the walk.
   [[nodiscard]] int plan_if_in_pattern(std::span<const int> dofs);
+  /// A plan for the same dofs as the last plan made, sharing its positions (the second
+  /// contact point of a pair, on the same unknowns): returns its id.
+  /// @pre n_plans() > 0 (NMM_ASSERT).
+  [[nodiscard]] int plan_as_last();
 
   /// Adds the upper triangle of the symmetric @p local with the positions of plan
   /// @p plan_id: the same result as add(dofs, local) with that plan's dofs, without search.

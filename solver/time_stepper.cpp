@@ -429,6 +429,13 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     auto coupling = [&](std::size_t k) {
       return std::span<const int>(flat.data() + starts[k], at(starts[k + 1] - starts[k]));
     };
+    // Plan k of couplings first, first + 1, ... (in order), or -1 when it is not in the
+    // pattern. The points of an edge-to-edge pair couple the same unknowns: one plan for them.
+    auto plan_coupling = [&](Assembler& assembler, std::size_t k, std::size_t first) {
+      if (k > first && std::ranges::equal(coupling(k), coupling(k - 1)))
+        return assembler.plan_as_last();
+      return assembler.plan_if_in_pattern(coupling(k));
+    };
     lap(clock, counters_.seconds_constraints);
     // The sparsity pattern: rebuilt only when a coupling needs an entry it does not have.
     // Couplings that changed within it (the expansion of a slave gaining or losing a term
@@ -451,7 +458,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       impl_->stiffness->truncate_plans(static_cast<int>(first_new));
       planned = true;
       for (std::size_t k = first_new; k + 1 < starts.size() && planned; ++k)
-        planned = impl_->stiffness->plan_if_in_pattern(coupling(k)) >= 0;
+        planned = plan_coupling(*impl_->stiffness, k, first_new) >= 0;
     }
     if (planned) {
       impl_->coupling_start = starts;
@@ -464,8 +471,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         builder.add(coupling(k));
       impl_->pattern = builder.build();
       impl_->stiffness = std::make_unique<Assembler>(impl_->pattern);
-      for (std::size_t k = 0; k + 1 < starts.size(); ++k)
-        (void)impl_->stiffness->plan(coupling(k));
+      for (std::size_t k = 0; k + 1 < starts.size(); ++k) {
+        const int id = plan_coupling(*impl_->stiffness, k, 0);
+        NMM_ASSERT(id >= 0, "every coupling is in the pattern built from them");
+      }
       impl_->coupling_start = starts;
       impl_->coupling_dofs = flat;
       impl_->pattern_start = starts;

@@ -270,6 +270,49 @@ TEST(Assembler, TruncatedPlansKeepTheFirstAndNewOnesFollowThem) {
   EXPECT_EQ(assembler.n_plans(), 0);
 }
 
+TEST(Assembler, APlanAsTheLastSharesItsPositionsAndSurvivesTruncation) {
+  // Each group planned twice, the second time as the last plan (the two points of an
+  // edge-to-edge pair): adding a group's local matrix through either plan is the same as
+  // through plan(), bit for bit; truncating just after a shared plan, or just before one,
+  // keeps what the kept plans use.
+  const Problem problem = make_problem(200, 50, 29, true);
+  Assembler twice(problem.pattern);
+  Assembler once(problem.pattern);
+  auto plan_twice = [&](std::size_t from) {
+    for (std::size_t g = from; g < problem.groups.size(); ++g) {
+      EXPECT_EQ(twice.plan_if_in_pattern(problem.groups[g]), static_cast<int>(2 * g));
+      EXPECT_EQ(twice.plan_as_last(), static_cast<int>(2 * g + 1));
+    }
+  };
+  plan_twice(0);
+  for (const auto& dofs : problem.groups)
+    static_cast<void>(once.plan(dofs));
+  auto same_sums = [&] {
+    twice.zero();
+    once.zero();
+    for (std::size_t g = 0; g < problem.groups.size(); ++g) {
+      twice.add(static_cast<int>(2 * g), problem.locals[g]);
+      twice.add(static_cast<int>(2 * g + 1), 0.5 * problem.locals[g]);
+      once.add(static_cast<int>(g), problem.locals[g]);
+      once.add(static_cast<int>(g), 0.5 * problem.locals[g]);
+      twice.add_vector(static_cast<int>(2 * g + 1), problem.vectors[g]);
+      once.add_vector(static_cast<int>(g), problem.vectors[g]);
+    }
+    EXPECT_EQ(relative_difference(twice.matrix(), once.matrix()), 0.0);
+    EXPECT_EQ(twice.rhs(), once.rhs());
+  };
+  same_sums();
+  for (const int first : {41, 30}) { // dropping a shared plan (41), keeping one last (29)
+    twice.truncate_plans(first);
+    EXPECT_EQ(twice.n_plans(), first);
+    if (first % 2 == 1) { // the group whose second plan went: planned again as the last
+      EXPECT_EQ(twice.plan_as_last(), first);
+    }
+    plan_twice(static_cast<std::size_t>(first + 1) / 2);
+    same_sums();
+  }
+}
+
 TEST(Assembler, PlanIfInPatternRefusesACouplingOutsideItAndKeepsTheOtherPlans) {
   // The time stepper plans a step's contacts in the last pattern when they fit it, and
   // builds a new pattern when one does not: a refused coupling leaves no trace.
