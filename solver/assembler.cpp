@@ -148,6 +148,9 @@ int Assembler::plan_if_in_pattern(std::span<const int> dofs) {
     }
   }
   plan.repeat_end = repeats_.size();
+  plan.kept_size = kept_local_.size();
+  plan.positions_size = positions_.size();
+  plan.repeats_size = repeats_.size();
   plans_.push_back(plan);
   return static_cast<int>(plans_.size()) - 1;
 }
@@ -192,9 +195,13 @@ void Assembler::add_vector(int plan_id, const Eigen::Ref<const Eigen::VectorXd>&
     rhs_[kept_dof[q]] += local[kept[q]];
 }
 
-int Assembler::plan_as_last() {
-  NMM_ASSERT(!plans_.empty(), "a plan to share");
-  plans_.push_back(plans_.back());
+int Assembler::plan_as(int plan_id) {
+  NMM_ASSERT(plan_id >= 0 && plan_id < n_plans(), "no such plan to share");
+  Plan plan = plans_[static_cast<std::size_t>(plan_id)];
+  plan.kept_size = kept_local_.size();
+  plan.positions_size = positions_.size();
+  plan.repeats_size = repeats_.size();
+  plans_.push_back(plan);
   return static_cast<int>(plans_.size()) - 1;
 }
 
@@ -203,17 +210,16 @@ void Assembler::truncate_plans(int first) {
   if (first == n_plans())
     return;
   if (first == 0) {
-    drop_data_from(plans_.front());
+    kept_local_.clear();
+    kept_dofs_.clear();
+    positions_.clear();
+    repeats_.clear();
   } else {
-    // What the last kept plan uses ends where its own data end (a plan_as_last() after it
-    // shares them, and may begin before them).
     const Plan& last = plans_[static_cast<std::size_t>(first) - 1];
-    const auto m = static_cast<std::size_t>(last.n_kept);
-    Plan end;
-    end.kept_begin = last.kept_begin + m;
-    end.position_begin = last.position_begin + m * (m + 1) / 2;
-    end.repeat_begin = last.repeat_end;
-    drop_data_from(end);
+    kept_local_.resize(last.kept_size);
+    kept_dofs_.resize(last.kept_size);
+    positions_.resize(last.positions_size);
+    repeats_.resize(last.repeats_size);
   }
   plans_.resize(static_cast<std::size_t>(first));
 }

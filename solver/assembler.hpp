@@ -70,10 +70,9 @@ public:
   /// The same, or -1 (and no plan) when a pair of @p dofs is not in the pattern: one walk
   /// down each column instead of a search for every pair and then the walk.
   [[nodiscard]] int plan_if_in_pattern(std::span<const int> dofs);
-  /// A plan for the same dofs as the last plan made, sharing its positions (the second
-  /// contact point of a pair, on the same unknowns): returns its id.
-  /// @pre n_plans() > 0 (NMM_ASSERT).
-  [[nodiscard]] int plan_as_last();
+  /// A plan for the same dofs as plan @p plan_id, sharing its positions (another contact
+  /// point on the same unknowns): returns its id. @pre 0 <= plan_id < n_plans() (NMM_ASSERT).
+  [[nodiscard]] int plan_as(int plan_id);
 
   /// Adds the upper triangle of the symmetric @p local with the positions of plan
   /// @p plan_id: the same result as add(dofs, local) with that plan's dofs, without search.
@@ -105,6 +104,11 @@ private:
     std::size_t position_begin = 0; // into positions_: n_kept (n_kept + 1) / 2 entries
     std::size_t repeat_begin = 0;   // into repeats_
     std::size_t repeat_end = 0;
+    // The sizes of kept_local_, positions_ and repeats_ once the plan was made: what it and
+    // the plans before it use (a plan_as() uses an earlier plan's data).
+    std::size_t kept_size = 0;
+    std::size_t positions_size = 0;
+    std::size_t repeats_size = 0;
   };
   // A pair a < b of local indices with the same dof: its diagonal entry also receives
   // local(b, a), which the upper-triangle loop does not visit.

@@ -270,47 +270,52 @@ TEST(Assembler, TruncatedPlansKeepTheFirstAndNewOnesFollowThem) {
   EXPECT_EQ(assembler.n_plans(), 0);
 }
 
-TEST(Assembler, APlanAsTheLastSharesItsPositionsAndSurvivesTruncation) {
-  // Each group planned twice, the second time as the last plan (the two points of an
-  // edge-to-edge pair): adding a group's local matrix through either plan is the same as
-  // through plan(), bit for bit; truncating just after a shared plan, or just before one,
-  // keeps what the kept plans use.
+TEST(Assembler, APlanAsAnotherSharesItsPositionsAndSurvivesTruncation) {
+  // Each group planned, then each planned again as its first plan (contacts between the same
+  // two elements): adding a group's local matrix through either plan is the same as through
+  // plan(), bit for bit; after truncating among the shared plans (whose data are those of
+  // early plans) or among the first ones, the plans made again do the same.
   const Problem problem = make_problem(200, 50, 29, true);
-  Assembler twice(problem.pattern);
+  const auto n = static_cast<int>(problem.groups.size());
+  Assembler shared(problem.pattern);
   Assembler once(problem.pattern);
-  auto plan_twice = [&](std::size_t from) {
-    for (std::size_t g = from; g < problem.groups.size(); ++g) {
-      EXPECT_EQ(twice.plan_if_in_pattern(problem.groups[g]), static_cast<int>(2 * g));
-      EXPECT_EQ(twice.plan_as_last(), static_cast<int>(2 * g + 1));
-    }
+  auto plan_firsts = [&](int from) {
+    for (int g = from; g < n; ++g)
+      EXPECT_EQ(shared.plan_if_in_pattern(problem.groups[static_cast<std::size_t>(g)]), g);
   };
-  plan_twice(0);
+  auto plan_shared = [&](int from) {
+    for (int g = from; g < n; ++g)
+      EXPECT_EQ(shared.plan_as(g), n + g);
+  };
+  plan_firsts(0);
+  plan_shared(0);
   for (const auto& dofs : problem.groups)
     static_cast<void>(once.plan(dofs));
   auto same_sums = [&] {
-    twice.zero();
+    shared.zero();
     once.zero();
-    for (std::size_t g = 0; g < problem.groups.size(); ++g) {
-      twice.add(static_cast<int>(2 * g), problem.locals[g]);
-      twice.add(static_cast<int>(2 * g + 1), 0.5 * problem.locals[g]);
-      once.add(static_cast<int>(g), problem.locals[g]);
-      once.add(static_cast<int>(g), 0.5 * problem.locals[g]);
-      twice.add_vector(static_cast<int>(2 * g + 1), problem.vectors[g]);
-      once.add_vector(static_cast<int>(g), problem.vectors[g]);
+    for (int g = 0; g < n; ++g) {
+      const auto k = static_cast<std::size_t>(g);
+      shared.add(g, problem.locals[k]);
+      shared.add(n + g, 0.5 * problem.locals[k]);
+      once.add(g, problem.locals[k]);
+      once.add(g, 0.5 * problem.locals[k]);
+      shared.add_vector(n + g, problem.vectors[k]);
+      once.add_vector(g, problem.vectors[k]);
     }
-    EXPECT_EQ(relative_difference(twice.matrix(), once.matrix()), 0.0);
-    EXPECT_EQ(twice.rhs(), once.rhs());
+    EXPECT_EQ(relative_difference(shared.matrix(), once.matrix()), 0.0);
+    EXPECT_EQ(shared.rhs(), once.rhs());
   };
   same_sums();
-  for (const int first : {41, 30}) { // dropping a shared plan (41), keeping one last (29)
-    twice.truncate_plans(first);
-    EXPECT_EQ(twice.n_plans(), first);
-    if (first % 2 == 1) { // the group whose second plan went: planned again as the last
-      EXPECT_EQ(twice.plan_as_last(), first);
-    }
-    plan_twice(static_cast<std::size_t>(first + 1) / 2);
-    same_sums();
-  }
+  shared.truncate_plans(n + 25); // the last kept plan shares plan 24's data, not the last's
+  EXPECT_EQ(shared.n_plans(), n + 25);
+  plan_shared(25);
+  same_sums();
+  shared.truncate_plans(30);
+  EXPECT_EQ(shared.n_plans(), 30);
+  plan_firsts(30);
+  plan_shared(0);
+  same_sums();
 }
 
 TEST(Assembler, PlanIfInPatternRefusesACouplingOutsideItAndKeepsTheOtherPlans) {
