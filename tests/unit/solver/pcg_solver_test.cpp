@@ -125,52 +125,43 @@ TEST(PcgSolver, HandsWhatItDoesNotSolveToCholmodForTheRestOfTheStep) {
   const SparseMatrix a = upper(block_row(100, 3, 1.0, 1e4));
   const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -2.0, 1.0);
   PcgSolver solver(PcgOptions{.tolerance = 1e-12, .max_iterations = 3});
+  auto expect_counts = [&](long iterations, long fallbacks, long factorizations) {
+    EXPECT_EQ(solver.counters().iterations, iterations);
+    EXPECT_EQ(solver.counters().fallbacks, fallbacks);
+    EXPECT_EQ(solver.counters().factorizations, factorizations);
+  };
   Eigen::VectorXd x = solve_anew(solver, a, rhs);
   // CHOLMOD's answer to the last bit: the fallback is its solve, nothing mixed in.
   EXPECT_EQ(x, cholmod_solution(a, rhs));
-  EXPECT_EQ(solver.counters().iterations, 3);
-  EXPECT_EQ(solver.counters().fallbacks, 1);
-  EXPECT_EQ(solver.counters().factorizations, 1);
+  expect_counts(3, 1, 1);
   // The next solve with the same values uses that factor: no iteration, no factorisation.
   ASSERT_EQ(solver.solve(2.0 * rhs, x), SolveStatus::ok);
   EXPECT_EQ(x, cholmod_solution(a, 2.0 * rhs));
-  EXPECT_EQ(solver.counters().iterations, 3);
-  EXPECT_EQ(solver.counters().fallbacks, 2); // every solve done by CHOLMOD
-  EXPECT_EQ(solver.counters().factorizations, 1);
+  expect_counts(3, 2, 1); // every solve done by CHOLMOD
   EXPECT_EQ(solver.counters().solves, 2);
-  // New values of the same pattern in the same step: CHOLMOD at once, without futile
-  // iterations.
-  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
-  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
-  EXPECT_EQ(solver.counters().iterations, 3);
-  EXPECT_EQ(solver.counters().fallbacks, 3);
-  EXPECT_EQ(solver.counters().factorizations, 2);
+  // New values of the same pattern (a factorisation, then a solve from no guess) in the same
+  // step: CHOLMOD at once, without futile iterations.
+  auto factorize_and_solve = [&] {
+    ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+    Eigen::VectorXd no_guess;
+    ASSERT_EQ(solver.solve(rhs, no_guess), SolveStatus::ok);
+  };
+  factorize_and_solve();
+  expect_counts(3, 3, 2);
   // The next step is done by CHOLMOD alone (a step they gave up in is followed by one
   // skipped), the one after goes back to conjugate gradients.
   solver.start_step();
   EXPECT_TRUE(solver.skipping());
-  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
-  Eigen::VectorXd next_step;
-  ASSERT_EQ(solver.solve(rhs, next_step), SolveStatus::ok);
-  EXPECT_EQ(solver.counters().iterations, 3);
-  EXPECT_EQ(solver.counters().fallbacks, 4);
-  EXPECT_EQ(solver.counters().factorizations, 3);
+  factorize_and_solve();
+  expect_counts(3, 4, 3);
   solver.start_step();
   EXPECT_FALSE(solver.skipping());
-  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
-  Eigen::VectorXd no_guess;
-  ASSERT_EQ(solver.solve(rhs, no_guess), SolveStatus::ok);
-  EXPECT_EQ(solver.counters().iterations, 6);
-  EXPECT_EQ(solver.counters().fallbacks, 5);
-  EXPECT_EQ(solver.counters().factorizations, 4);
+  factorize_and_solve();
+  expect_counts(6, 5, 4);
   // A new analysis tries conjugate gradients again (from zero, as before).
   ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
-  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
-  Eigen::VectorXd from_zero;
-  ASSERT_EQ(solver.solve(rhs, from_zero), SolveStatus::ok);
-  EXPECT_EQ(solver.counters().iterations, 9);
-  EXPECT_EQ(solver.counters().fallbacks, 6);
-  EXPECT_EQ(solver.counters().factorizations, 5);
+  factorize_and_solve();
+  expect_counts(9, 6, 5);
 }
 
 // One step of a run: start_step(), then the step's system solved from no guess.
