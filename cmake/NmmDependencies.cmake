@@ -5,6 +5,7 @@
 
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(OpenMP REQUIRED COMPONENTS CXX)
+find_package(Threads REQUIRED) # mesh/parallel.cpp
 
 # CGAL: header-only on Debian 12 (5.5). Only mesh/*.cpp may use it.
 find_package(CGAL REQUIRED)

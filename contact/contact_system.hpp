@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -44,6 +45,10 @@ struct ContactOptions {
   double spring_length = 1.0;
   /// Contact detection criteria (the distance is set every step from the step displacement).
   DetectionOptions detection;
+  /// prepare_kinematics() splits its points (and pairs) among threads only when each thread
+  /// gets at least this many: below, starting a thread costs more than it saves. The
+  /// results are the same either way.
+  std::size_t parallel_min_chunk = 2048;
   /// A contact that has switched between open and closed this many times within a step
   /// stays open for the rest of it; one that has switched between lock and slide this many
   /// times stays locked: the chatter rule (docs/formulation.md).
@@ -196,6 +201,10 @@ public:
   /// After a solve with step displacement @p raw: new modes by Shi's mode table, new lift-off
   /// points and new friction loads.
   ModeUpdate update_modes(const Model& model, const Eigen::VectorXd& raw);
+  /// Computes the kinematics of every contact point and of every gap sample of an
+  /// edge-to-edge pair as they are (on worker_threads() threads when there are many): what
+  /// point_dofs(), the springs and update_modes() would compute one by one, the same numbers.
+  void prepare_kinematics(const Model& model) const;
   /// After a converged open-close iteration: when ContactOptions::penetration_tolerance is
   /// set and a closed contact penetrates by more (or pushes across a wider gap), moves every
   /// closed spring's zero by its penetration (ContactPoint::shift, an
@@ -356,9 +365,27 @@ private:
   /// Forgets every carried state (keeping the storage).
   void clear_carried();
 
+  /// Workspaces of kinematics(): where each unknown sits, the columns and the interpolation
+  /// of one point, the terms before they are cut to the unknowns used.
+  struct KinematicsWork {
+    std::vector<Eigen::Index> local;
+    std::vector<int> columns;
+    PointInterpolation t;
+    std::vector<double> hn;
+    std::vector<double> hs;
+  };
   /// The kinematics of @p p into @p k (its storage reused: a slot's are computed many times
-  /// a step).
-  void kinematics(const Model& model, const ContactPoint& p, Kinematics& k) const;
+  /// a step), with the workspace @p work.
+  void
+  kinematics(const Model& model, const ContactPoint& p, Kinematics& k, KinematicsWork& work) const;
+  /// cached_kinematics() of slot @p slot with the workspace @p work.
+  const Kinematics& cached_kinematics(const Model& model,
+                                      const ContactPoint& p,
+                                      std::size_t slot,
+                                      KinematicsWork& work) const;
+  /// The point whose kinematics gap_at() uses for sample @p sample of group @p g at @p u.
+  [[nodiscard]] ContactPoint
+  gap_sample(const Group& g, double u, const std::vector<std::pair<double, double>>& shifts) const;
   /// kinematics(model, p) through slot @p slot of the cache (slots: the points, then three
   /// gap samples per group); the same numbers, computed again only when p's slave point,
   /// edges, anchor, offset or shift differ from the slot's.
@@ -403,16 +430,9 @@ private:
   /// cached_kinematics() slots, made invalid by begin_step() (the geometry moved; their
   /// storage is kept for the next step's).
   mutable std::vector<CachedKinematics> kinematics_cache_;
-  /// Workspaces of kinematics(): where each unknown sits, the columns and the interpolation
-  /// of one point, the terms before they are cut to the unknowns used.
-  struct KinematicsWork {
-    std::vector<Eigen::Index> local;
-    std::vector<int> columns;
-    PointInterpolation t;
-    std::vector<double> hn;
-    std::vector<double> hs;
-  };
+  /// Workspaces of kinematics() on this thread, and on each thread of prepare_kinematics().
   mutable KinematicsWork work_;
+  mutable std::vector<KinematicsWork> works_;
   /// Closed contacts of the last step: their states and keys in the order end_step() stored
   /// them, where each key's state is, and the anchors of all of them (flat: a step of 10,004
   /// DDA blocks carries 60,000 contacts, and a hash map's node and anchor vector per contact

@@ -220,7 +220,9 @@ int run(int argc, char** argv) {
     return std::string("nmm ") + NMM_VERSION + "\n" + nmm::dependency_report();
   });
   int threads = nmm::available_cores();
-  app.add_option("--threads", threads, "Threads for the linear solver (default: usable cores)")
+  app.add_option(
+         "--threads", threads,
+         "Threads for the linear solver and nmm's own parallel loops (default: usable cores)")
       ->check(CLI::Range(1, 1024));
   app.fallthrough(); // `nmm run case.toml --threads 2` as well as `nmm --threads 2 run ...`
   app.footer(

@@ -19,6 +19,9 @@ struct PcgOptions {
   /// Most steps done by CHOLMOD alone after a step conjugate gradients gave up in (the
   /// number doubles from 1 with each such step and starts again after a step they solve).
   int max_skipped_steps = 64;
+  /// A product with a matrix of at least this many stored entries runs its two halves on
+  /// two threads (when there are); the results are the same either way.
+  long parallel_entries = 200000;
 };
 
 /// Preconditioned conjugate gradients (DESIGN.md "Measured facts": in dynamic steps the

@@ -5,35 +5,10 @@
 
 #include <cblas.h>
 #include <omp.h>
-#include <sched.h>
 
-#include <algorithm>
-#include <cmath>
-#include <fstream>
 #include <string>
 
 namespace nmm {
-
-int available_cores() {
-  int cores = 1;
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (sched_getaffinity(0, sizeof(set), &set) == 0)
-    cores = std::max(1, CPU_COUNT(&set));
-  // cgroup v2: "max 100000" (no quota) or "<quota> <period>" in microseconds.
-  std::ifstream cpu_max("/sys/fs/cgroup/cpu.max");
-  std::string quota;
-  double period = 0.0;
-  if (cpu_max >> quota >> period && quota != "max" && period > 0.0) {
-    try {
-      const double allowed = std::stod(quota) / period;
-      cores = std::min(cores, std::max(1, static_cast<int>(std::ceil(allowed))));
-    } catch (const std::exception&) {
-      // An unreadable quota leaves the affinity count in force.
-    }
-  }
-  return cores;
-}
 
 void limit_threads(int n) {
   NMM_ASSERT(n >= 1, "thread count must be positive");
@@ -42,6 +17,7 @@ void limit_threads(int n) {
   // none active, so that they never run beside OpenBLAS's threads.
   omp_set_max_active_levels(0);
   openblas_set_num_threads(n);
+  set_worker_threads(n);
 }
 
 int blas_threads() { return openblas_get_num_threads(); }

@@ -2,15 +2,14 @@
 // solver/threads.hpp — thread counts of the parallel libraries under the linear solver.
 #pragma once
 
+#include "mesh/parallel.hpp"
+
 #include <string>
 
 namespace nmm {
 
-/// Cores this process may really use: the CPU affinity mask, further limited by a cgroup
-/// CPU quota when one is set (a container may see more CPUs than it may run on).
-[[nodiscard]] int available_cores();
-
-/// Caps OpenMP (CHOLMOD) and OpenBLAS to @p n threads. Uncapped, Debian's CHOLMOD runs 3-5x
+/// Caps OpenMP (CHOLMOD), OpenBLAS and nmm's own loops (parallel_for(), available_cores()
+/// by default: mesh/parallel.hpp) to @p n threads. Uncapped, Debian's CHOLMOD runs 3-5x
 /// slower on this 2-core machine kind (DESIGN.md "Measured facts"). OpenMP parallel regions
 /// then run on one thread: the only ones are in CHOLMOD's supernodal factorisation, which
 /// zeroes and scatters supernodes with num_threads(4) compiled in (CHOLMOD_OMP_NUM_THREADS,

@@ -413,6 +413,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
                                   at(contact_start[at(i + 1)] - contact_start[at(i)]));
     };
     if (impl_->contact) {
+      impl_->contact->prepare_kinematics(model_);
       for (int i = 0; i < impl_->contact->n_points(); ++i) {
         impl_->contact->append_point_dofs(model_, i, contact_dofs);
         contact_start.push_back(static_cast<int>(contact_dofs.size()));

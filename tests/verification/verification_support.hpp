@@ -156,11 +156,13 @@ inline Setup row_of_blocks_on_a_base(ElementKind kind) {
 /// A contact system with one strength for every boundary edge; joint faces are bonded when
 /// @p bonded (an intact joint holds until its strength is exceeded); augmented-Lagrange
 /// passes hold the penetration to @p penetration_tolerance when it is > 0.
-inline std::unique_ptr<ContactSystem> contact_for(const Model& model,
-                                                  double penalty,
-                                                  const JointStrength& strength,
-                                                  bool bonded = false,
-                                                  double penetration_tolerance = 0.0) {
+inline std::unique_ptr<ContactSystem>
+contact_for(const Model& model,
+            double penalty,
+            const JointStrength& strength,
+            bool bonded = false,
+            double penetration_tolerance = 0.0,
+            std::size_t parallel_min_chunk = ContactOptions{}.parallel_min_chunk) {
   std::vector<std::vector<JointStrength>> strengths;
   std::vector<std::vector<bool>> bonds;
   for (const BoundaryLoop& loop : model.loops) {
@@ -174,6 +176,7 @@ inline std::unique_ptr<ContactSystem> contact_for(const Model& model,
   options.penalty = penalty;
   options.spring_length = model.scale;
   options.penetration_tolerance = penetration_tolerance;
+  options.parallel_min_chunk = parallel_min_chunk;
   return std::make_unique<ContactSystem>(options, std::move(strengths), std::move(bonds));
 }
 

@@ -95,6 +95,21 @@ TEST(PcgSolver, ReadsOnlyTheUpperTriangle) {
   EXPECT_EQ(from_upper, from_full); // the same arithmetic, to the last bit
 }
 
+TEST(PcgSolver, AProductOnTwoThreadsGivesTheSameSolutionToTheBit) {
+  // The product's two halves on two threads (from 0 stored entries on) and on this one (never
+  // on two): the same numbers, whatever the machine's threads.
+  const SparseMatrix a = upper(block_row(3000, 6, 1.0, 20.0));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
+  PcgSolver threads(PcgOptions{.parallel_entries = 0});
+  PcgSolver one(PcgOptions{.parallel_entries = a.nonZeros() + 1});
+  const Eigen::VectorXd x = solve_anew(threads, a, rhs);
+  EXPECT_EQ(x, solve_anew(one, a, rhs));
+  EXPECT_EQ(threads.counters().iterations, one.counters().iterations);
+  EXPECT_EQ(threads.counters().fallbacks, 0);
+  const Eigen::VectorXd expected = cholmod_solution(a, rhs);
+  EXPECT_LT((x - expected).norm(), 1e-8 * expected.norm()); // tolerance 1e-10, condition ~80
+}
+
 TEST(PcgSolver, StartsFromTheGuessItIsGiven) {
   const SparseMatrix a = upper(block_row(50, 2, 1.0, 10.0));
   const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), 1.0, 3.0);
