@@ -63,7 +63,7 @@ void parallel_for(std::size_t n,
   const std::size_t most = std::max<std::size_t>(1, n / std::max<std::size_t>(1, min_chunk));
   const auto chunks =
       static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(worker_threads()), most));
-  if (chunks <= 1 || n < 2 * min_chunk) {
+  if (chunks <= 1 || n / 2 < min_chunk) { // (n / 2: no overflow for any min_chunk)
     if (n > 0)
       body(0, n, 0);
     return;
