@@ -710,38 +710,37 @@ void ContactSystem::prepare_kinematics(const Model& model) const {
       if (!g.edge)
         continue;
       const std::vector<std::pair<double, double>> shifts = shifts_of(g);
-      const std::size_t slots = points_.size() + 3 * k;
-      KinematicsWork& work = works_[at(chunk)];
-      static_cast<void>(cached_kinematics(model, gap_sample(g, g.lo, shifts), slots, work));
-      if (gauss_ == 3)
-        static_cast<void>(
-            cached_kinematics(model, gap_sample(g, 0.5 * (g.lo + g.hi), shifts), slots + 1, work));
-      static_cast<void>(cached_kinematics(model, gap_sample(g, g.hi, shifts), slots + 2, work));
+      for (int sample = 0; sample < 3; ++sample) {
+        if (sample != 1 || gauss_ == 3)
+          static_cast<void>(sample_kinematics(model, g, sample, shifts, works_[at(chunk)]));
+      }
     }
   });
 }
 
-ContactPoint ContactSystem::gap_sample(const Group& g,
-                                       double u,
-                                       const std::vector<std::pair<double, double>>& shifts) const {
+const ContactSystem::Kinematics&
+ContactSystem::sample_kinematics(const Model& model,
+                                 const Group& g,
+                                 int sample,
+                                 const std::vector<std::pair<double, double>>& shifts,
+                                 KinematicsWork& work) const {
+  const double u = sample == 0 ? g.lo : sample == 1 ? 0.5 * (g.lo + g.hi) : g.hi;
   ContactPoint p = points_[at(g.first)];
   const Point2& a = boundary_.position[at(p.slave_edge)];
   const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
   p.slave = a + u * (d - a);
   p.anchor = 0.0; // the gap does not depend on it: one slot for the whole step
   p.shift = shifts.empty() ? 0.0 : offset_at(shifts, u);
-  return p;
+  const auto group = static_cast<std::size_t>(&g - groups_.data());
+  return cached_kinematics(model, p, points_.size() + 3 * group + at(sample), work);
 }
 
 double ContactSystem::gap_at(const Model& model,
                              const Group& g,
                              int sample,
-                             double u,
                              const std::vector<std::pair<double, double>>& shifts,
                              const Eigen::VectorXd& raw) const {
-  const auto group = static_cast<std::size_t>(&g - groups_.data());
-  return cached_kinematics(model, gap_sample(g, u, shifts), points_.size() + 3 * group + at(sample))
-      .gap(raw);
+  return sample_kinematics(model, g, sample, shifts, work_).gap(raw);
 }
 
 std::vector<std::pair<double, double>> ContactSystem::shifts_of(const Group& g) const {
@@ -931,11 +930,11 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     }
     if (g.edge) {
       const std::vector<std::pair<double, double>> shifts = shifts_of(g);
-      std::array<double, 3> gaps{gap_at(model, g, 0, g.lo, shifts, raw)};
+      std::array<double, 3> gaps{gap_at(model, g, 0, shifts, raw)};
       std::size_t n = 1;
       if (gauss_ == 3)
-        gaps[n++] = gap_at(model, g, 1, 0.5 * (g.lo + g.hi), shifts, raw);
-      gaps[n++] = gap_at(model, g, 2, g.hi, shifts, raw);
+        gaps[n++] = gap_at(model, g, 1, shifts, raw);
+      gaps[n++] = gap_at(model, g, 2, shifts, raw);
       const std::span<const double> samples(gaps.data(), n);
       const GapProfile profile(g.lo, g.hi, samples);
       pressed = profile.negative();

@@ -383,9 +383,14 @@ private:
                                       const ContactPoint& p,
                                       std::size_t slot,
                                       KinematicsWork& work) const;
-  /// The point whose kinematics gap_at() uses for sample @p sample of group @p g at @p u.
-  [[nodiscard]] ContactPoint
-  gap_sample(const Group& g, double u, const std::vector<std::pair<double, double>>& shifts) const;
+  /// The kinematics of gap sample @p sample of edge group @p g (0 at lo, 1 in the middle,
+  /// 2 at hi) through its cache slot, with the multiplier interpolated from @p shifts
+  /// (shifts_of(g), taken once for the group's samples), with the workspace @p work.
+  const Kinematics& sample_kinematics(const Model& model,
+                                      const Group& g,
+                                      int sample,
+                                      const std::vector<std::pair<double, double>>& shifts,
+                                      KinematicsWork& work) const;
   /// kinematics(model, p) through slot @p slot of the cache (slots: the points, then three
   /// gap samples per group); the same numbers, computed again only when p's slave point,
   /// edges, anchor, offset or shift differ from the slot's.
@@ -394,14 +399,11 @@ private:
   /// The shape of @p element at the start of the step (built by begin_step() for the
   /// elements of every contact point's edges).
   [[nodiscard]] const ElementShape& shape(int element) const;
-  /// Normal gap at slave parameter u of edge group g after the step displacement raw, with
-  /// the multiplier interpolated from @p shifts (shifts_of(g), taken once for the group's
-  /// samples); @p sample (0 at lo, 1 in the middle, 2 at hi) is its cached_kinematics() slot
-  /// of the group.
+  /// Normal gap at gap sample @p sample of edge group @p g (sample_kinematics()) after the
+  /// step displacement @p raw.
   [[nodiscard]] double gap_at(const Model& model,
                               const Group& g,
                               int sample,
-                              double u,
                               const std::vector<std::pair<double, double>>& shifts,
                               const Eigen::VectorXd& raw) const;
   /// Places the Gauss points of edge group g on [from, to] (anchors from @p anchor_of(u)).

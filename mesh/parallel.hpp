@@ -19,8 +19,9 @@ namespace nmm {
 void set_worker_threads(int n);
 
 /// Calls body(first, last, chunk) for contiguous chunks [first, last) that cover [0, n) in
-/// order, chunk = 0, 1, ... (fewer than worker_threads()): on as many threads when n is at
-/// least 2 * min_chunk, else once, on this thread, as body(0, n, 0). Each chunk runs on one
+/// order, chunk = 0, 1, ... (at most worker_threads() chunks, none under min_chunk indices):
+/// each on its own thread when n is at least 2 * min_chunk, else once, on this thread, as
+/// body(0, n, 0). Each chunk runs on one
 /// thread; when body writes only what belongs to its indices (and per-chunk scratch), the
 /// results do not depend on the number of threads. An exception thrown by a chunk is rethrown
 /// here once every chunk has ended (that of the first chunk that threw).

@@ -66,10 +66,10 @@ public:
   virtual void start_step() {}
   /// What the solver carries from one step to the next beyond its counters, for a restart
   /// checkpoint: empty for a solver that carries nothing.
-  [[nodiscard]] virtual std::vector<long> carried() const { return {}; }
+  [[nodiscard]] virtual std::vector<int> carried() const { return {}; }
   /// Takes back what carried() gave (a solver that carries nothing ignores it); false, and
   /// nothing changed, when it is not what this solver can carry.
-  [[nodiscard]] virtual bool restore_carried(const std::vector<long>& /*carried*/) { return true; }
+  [[nodiscard]] virtual bool restore_carried(const std::vector<int>& /*carried*/) { return true; }
   /// The matrix's own column at which the last call that returned not_positive_definite met
   /// a non-positive pivot, or -1.
   [[nodiscard]] virtual long failed_column() const = 0;

@@ -38,8 +38,8 @@ struct PcgSolver::Impl {
   bool failed = false;
   /// After steps they gave up in (start_step()): the length of the next run of steps done by
   /// CHOLMOD alone, the steps of the current run still to come, whether this step is one.
-  long next_skip = 0;
-  long skip_left = 0;
+  int next_skip = 0;
+  int skip_left = 0;
   bool skipping = false;
   std::vector<int> diagonal; ///< index of (j, j) among the values, per column
   /// Diagonal blocks: unknowns block_start[b] .. block_start[b + 1] - 1; for each, the index
@@ -352,13 +352,12 @@ long PcgSolver::failed_column() const { return impl_->failed_column; }
 // failed for a while (a landing impact) is back on them after a few steps.
 void PcgSolver::start_step() {
   Impl& m = *impl_;
-  if (m.failed)
-    m.next_skip =
-        std::min(std::max(1L, 2 * m.next_skip), static_cast<long>(m.options.max_skipped_steps));
-  else if (m.tried)
-    m.next_skip = 0;
-  if (m.failed)
+  if (m.failed) {
+    m.next_skip = std::min(std::max(1, 2 * m.next_skip), m.options.max_skipped_steps);
     m.skip_left = m.next_skip;
+  } else if (m.tried) {
+    m.next_skip = 0;
+  }
   m.skipping = m.skip_left > 0;
   if (m.skipping)
     --m.skip_left;
@@ -367,20 +366,20 @@ void PcgSolver::start_step() {
 
 // Between steps: the last step's outcome is not yet in the run of steps to skip
 // (start_step() puts it there), so it is carried too.
-std::vector<long> PcgSolver::carried() const {
+std::vector<int> PcgSolver::carried() const {
   const Impl& m = *impl_;
-  return {m.next_skip, m.skip_left, m.tried ? 1L : 0L, m.failed ? 1L : 0L};
+  return {m.next_skip, m.skip_left, m.tried ? 1 : 0, m.failed ? 1 : 0};
 }
 
-bool PcgSolver::restore_carried(const std::vector<long>& carried) {
+bool PcgSolver::restore_carried(const std::vector<int>& carried) {
   Impl& m = *impl_;
   if (carried.empty()) // a checkpoint of a run by CHOLMOD: nothing to skip
     return true;
-  auto flag = [](long v) { return v == 0 || v == 1; };
+  auto flag = [](int v) { return v == 0 || v == 1; };
   if (carried.size() != 4 || carried[0] < 0 || carried[1] < 0 || carried[1] > carried[0] ||
       !flag(carried[2]) || !flag(carried[3]))
     return false;
-  m.next_skip = std::min(carried[0], static_cast<long>(m.options.max_skipped_steps));
+  m.next_skip = std::min(carried[0], m.options.max_skipped_steps);
   m.skip_left = std::min(carried[1], m.next_skip);
   m.tried = carried[2] != 0;
   m.failed = carried[3] != 0;

@@ -56,8 +56,8 @@ public:
   void start_step() override;
   /// The steps to skip: {the length of the next run of them, the steps of this run still to
   /// skip, whether the last step was tried, whether it gave up}.
-  [[nodiscard]] std::vector<long> carried() const override;
-  [[nodiscard]] bool restore_carried(const std::vector<long>& carried) override;
+  [[nodiscard]] std::vector<int> carried() const override;
+  [[nodiscard]] bool restore_carried(const std::vector<int>& carried) override;
   /// Whether the step begun last goes to CHOLMOD without conjugate gradients.
   [[nodiscard]] bool skipping() const;
 

@@ -434,10 +434,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     // pattern. The points of an edge-to-edge pair couple the same unknowns: one plan for them
     // (looking further back, for all the contacts of two elements, costs as much as it saves
     // at 10,004 DDA blocks).
-    auto plan_coupling = [&](Assembler& assembler, std::size_t k, std::size_t first) {
+    auto plan_coupling = [&](std::size_t k, std::size_t first) {
       if (k > first && std::ranges::equal(coupling(k), coupling(k - 1)))
-        return assembler.plan_as(static_cast<int>(k) - 1);
-      return assembler.plan_if_in_pattern(coupling(k));
+        return impl_->stiffness->plan_as(static_cast<int>(k) - 1);
+      return impl_->stiffness->plan_if_in_pattern(coupling(k));
     };
     lap(clock, counters_.seconds_constraints);
     // The sparsity pattern: rebuilt only when a coupling needs an entry it does not have.
@@ -461,7 +461,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       impl_->stiffness->truncate_plans(static_cast<int>(first_new));
       planned = true;
       for (std::size_t k = first_new; k + 1 < starts.size() && planned; ++k)
-        planned = plan_coupling(*impl_->stiffness, k, first_new) >= 0;
+        planned = plan_coupling(k, first_new) >= 0;
     }
     if (planned) {
       impl_->coupling_start = starts;
@@ -475,7 +475,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       impl_->pattern = builder.build();
       impl_->stiffness = std::make_unique<Assembler>(impl_->pattern);
       for (std::size_t k = 0; k + 1 < starts.size(); ++k) {
-        const int id = plan_coupling(*impl_->stiffness, k, 0);
+        const int id = plan_coupling(k, 0);
         NMM_ASSERT(id >= 0, "every coupling is in the pattern built from them");
       }
       impl_->coupling_start = starts;
@@ -918,8 +918,7 @@ void TimeStepper::save_state(StateWriter& out) const {
   out.put(static_cast<std::int64_t>(solver.solves));
   out.put(static_cast<std::int64_t>(solver.iterations));
   out.put(static_cast<std::int64_t>(solver.fallbacks));
-  const std::vector<long> carried = impl_->solver->carried();
-  out.put(std::vector<int>(carried.begin(), carried.end()));
+  out.put(impl_->solver->carried());
   out.put_count(warnings_.size());
   for (const std::string& w : warnings_)
     out.put(w);
@@ -981,7 +980,7 @@ void TimeStepper::load_state(StateReader& in) {
   impl_->restored_counters.iterations = static_cast<long>(in.integer());
   impl_->restored_counters.fallbacks = static_cast<long>(in.integer());
   const std::vector<int> carried = in.integers();
-  if (!impl_->solver->restore_carried(std::vector<long>(carried.begin(), carried.end())))
+  if (!impl_->solver->restore_carried(carried))
     in.fail("its linear solver's state (" + std::to_string(carried.size()) +
             " numbers) is not one of " + impl_->solver->name());
   warnings_.resize(in.count());
