@@ -74,11 +74,12 @@ double direction_angle(const Point2& d) {
 
 /// Shi's criterion [3]: translated onto the edge, the angle's wedge may dip into the edge's
 /// material half-plane (the side opposite its outward normal) by less than `limit`.
-bool fits_against(const Wedge& w, const Point2& normal, double limit) {
+/// @param sin_limit  std::sin(limit)
+bool fits_against(const Wedge& w, const Point2& normal, double sin_limit) {
   if (w.contains(-normal))
     return false;
   const double lowest = std::min(w.start.dot(normal), w.finish.dot(normal));
-  return lowest >= -std::sin(limit);
+  return lowest >= -sin_limit;
 }
 
 class Detector {
@@ -86,18 +87,23 @@ public:
   Detector(const ContactBoundary& boundary,
            const DetectionOptions& options,
            const std::vector<std::uint64_t>& keep)
-      : b_(boundary), options_(options), keep_(keep.size()), rounding_(rounding_length(boundary)) {
+      : b_(boundary), options_(options), keep_(keep.size()), rounding_(rounding_length(boundary)),
+        cos_overlap_(std::cos(options.angle_overlap)),
+        sin_overlap_(std::sin(options.angle_overlap)) {
     for (const std::uint64_t key : keep)
       keep_.insert(key);
-    // Every vertex's angle once (an atan2): the tests ask for it many times per vertex.
+    // Every vertex's angle (an atan2) and every edge's direction (a square root) once: the
+    // tests ask for them many times.
     const int n = b_.n_vertices();
     for (KeySet* set : {&seen_, &edge_pairs_, &vertex_pairs_}) // about one key per vertex
       set->reserve(at(n));
     angle_.resize(at(n));
     flat_.resize(at(n));
+    direction_.resize(at(n));
     for (int v = 0; v < n; ++v) {
       angle_[at(v)] = b_.angle(v);
       flat_[at(v)] = std::abs(angle_[at(v)] - std::numbers::pi) < options_.angle_overlap ? 1 : 0;
+      direction_[at(v)] = b_.direction(v);
     }
   }
 
@@ -211,6 +217,12 @@ private:
 
   Wedge wedge(int v) const { return nmm::wedge(b_, v, angle_[at(v)]); }
 
+  /// ContactBoundary::outward_normal(e) from the stored direction.
+  Point2 outward_normal(int e) const {
+    const Point2& d = direction_[at(e)];
+    return {d.y(), -d.x()};
+  }
+
   void add(const ContactCandidate& c) {
     if (seen_.insert(c.key()))
       result_.push_back(c);
@@ -219,9 +231,9 @@ private:
   /// Two facing parallel edges (antiparallel within the angle criterion) whose projections
   /// overlap and whose gap can close in the step.
   void test_edge_edge(int e, int f) {
-    const Point2 de = b_.direction(e);
-    const Point2 df = b_.direction(f);
-    if (de.dot(df) > -std::cos(options_.angle_overlap))
+    const Point2& de = direction_[at(e)];
+    const Point2& df = direction_[at(f)];
+    if (de.dot(df) > -cos_overlap_)
       return;
     // Slave e against master f: the overlap of e's projection on f.
     const Point2& c = b_.position[at(f)];
@@ -234,7 +246,7 @@ private:
     const double hi = std::min(length, std::max(ta, td));
     if (hi - lo <= 1e-6 * length) // a touching end: the neighbouring pairs hold it
       return;
-    const Point2 n = b_.outward_normal(f);
+    const Point2 n = outward_normal(f);
     const double ga = n.dot(a - c);
     const double gd = n.dot(d - c);
     // Gap at the ends of the overlap (linear in between).
@@ -308,7 +320,7 @@ private:
     if (t <= 0.0 || t >= 1.0 || (t * length <= rounding_ && !flat(m)) ||
         ((1.0 - t) * length <= rounding_ && !flat(b_.next[at(m)])))
       return;
-    const Point2 n = b_.outward_normal(m);
+    const Point2 n = outward_normal(m);
     const double gap = n.dot(p - c);
     if (std::abs(gap) > options_.distance || covered(v, m)) // (the look-up after the arithmetic)
       return;
@@ -317,7 +329,7 @@ private:
     candidate.master = m;
     if (gap < -options_.penetration && !kept(candidate))
       return;
-    if (!fits_against(wedge(v), n, options_.angle_overlap))
+    if (!fits_against(wedge(v), n, sin_overlap_))
       return;
     ++vertex_edge_;
     add(candidate);
@@ -371,11 +383,13 @@ private:
       return;
     const Point2& p = b_.position[at(v)];
     const Point2& q = b_.position[at(w)];
-    if ((p - q).norm() > options_.distance || covered_pair(v, w))
+    // A pair is tested once (up to four edge pairs hold it); what follows depends on the
+    // two vertices alone.
+    if ((p - q).norm() > options_.distance || !vertex_pairs_.insert(pair_key(v, w)))
+      return;
+    if (covered_pair(v, w))
       return;
     if (b_.block[at(v)] == b_.block[at(w)] && !faces_void(v, w))
-      return;
-    if (!vertex_pairs_.insert(pair_key(v, w)))
       return;
     if (flat(v) && flat(w))
       return; // straight against straight: edge-to-edge contacts, if facing
@@ -406,14 +420,14 @@ private:
       }
       if (best < 0 || covered(corner, best))
         return;
-      const Point2 n = b_.outward_normal(best);
+      const Point2 n = outward_normal(best);
       const double gap = n.dot(b_.position[at(corner)] - b_.position[at(best)]);
       ContactCandidate candidate;
       candidate.slave = corner;
       candidate.master = best;
       if (gap > options_.distance || (gap < -options_.penetration && !kept(candidate)))
         return;
-      if (!fits_against(wedge(corner), n, options_.angle_overlap))
+      if (!fits_against(wedge(corner), n, sin_overlap_))
         return;
       ++vertex_edge_;
       add(candidate);
@@ -469,10 +483,13 @@ private:
   const ContactBoundary& b_;
   const DetectionOptions& options_;
   KeySet keep_;
-  double rounding_ = 0.0; ///< rounding_length() of the boundary
+  double rounding_ = 0.0;    ///< rounding_length() of the boundary
+  double cos_overlap_ = 0.0; ///< std::cos(options_.angle_overlap)
+  double sin_overlap_ = 0.0; ///< std::sin(options_.angle_overlap)
   KeySet seen_;
   std::vector<double> angle_;       ///< b_.angle(v) of every vertex
   std::vector<unsigned char> flat_; ///< flat(v) of every vertex
+  std::vector<Point2> direction_;   ///< b_.direction(e) of every edge
   KeySet edge_pairs_;               ///< pair_key() of the edge-to-edge contacts
   KeySet vertex_pairs_;             ///< pair_key() of the angle pairs tested
   std::vector<ContactCandidate> result_;
