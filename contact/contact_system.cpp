@@ -808,6 +808,22 @@ void ContactSystem::append_point_dofs(const Model& model, int i, std::vector<int
   out.insert(out.end(), dofs.begin(), dofs.end());
 }
 
+namespace {
+
+/// m += (s h) h^T, entry (a, b) as (s h(a)) h(b): what Eigen's outer product computes, without
+/// its temporary for s h (an allocation for every spring in every open-close iteration).
+void add_outer(Eigen::MatrixXd& m, double s, const Eigen::VectorXd& h) {
+  const Eigen::Index n = h.size();
+  for (Eigen::Index b = 0; b < n; ++b) {
+    const double hb = h(b);
+    double* column = m.col(b).data();
+    for (Eigen::Index a = 0; a < n; ++a)
+      column[a] += (s * h(a)) * hb;
+  }
+}
+
+} // namespace
+
 bool ContactSystem::contribution(const Model& model,
                                  int i,
                                  Eigen::MatrixXd* stiffness,
@@ -825,12 +841,12 @@ bool ContactSystem::contribution(const Model& model,
   const Eigen::VectorXd& hs = k.hs;
   // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
   if (stiffness != nullptr)
-    stiffness->noalias() += p.stiffness * hn * hn.transpose();
+    add_outer(*stiffness, p.stiffness, hn);
   load -= p.stiffness * k.g0 * hn;
   if (p.mode == ContactMode::lock) {
     // Shear spring (eq. 3.25-3.26) anchored at P0.
     if (stiffness != nullptr)
-      stiffness->noalias() += p.stiffness * hs * hs.transpose();
+      add_outer(*stiffness, p.stiffness, hs);
     load -= p.stiffness * k.s0 * hs;
   } else if (const double friction = friction_force(p); friction != 0.0) {
     // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
