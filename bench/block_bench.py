@@ -5,7 +5,7 @@
     python3 bench/block_bench.py [--nmm build/release/nmm] [--work build/block-bench]
                                  [--sizes 100,1000,10000] [--models dda,vem,nmm]
                                  [--steps 100:20,1000:5,10000:3] [--no-wall] [--no-rock-mass]
-                                 [--threads N] [--solvers cholmod,pcg]
+                                 [--threads N] [--solvers cholmod,pcg] [--steady F]
 
 For every size N and model it writes the rock mass of bench/rock_mass.py (--blocks N --model M
 --steps K --open-close-max 20, seed 1, default joint sets: the same joints for the three
@@ -25,6 +25,12 @@ geometry) and other (time step control and the energy check), and steps per seco
 the two goals of issue 6 (the wall's steps in under 0.2 s; at 10000 DDA blocks at least 20
 steps per second) and by what factor they are met or missed. The table is Markdown (for
 docs/benchmarks.md); WORK/block_bench.tsv holds the same figures for bench/block_bench.gp.
+
+With --steady F, every rock mass is also run for F times its steps (the first run is then
+the same case stopped by `nmm run --steps K`), and the difference of the two runs gives the
+time of a step after the first K: the first step builds the sparsity pattern, analyses it
+and touches every buffer for the first time, which a run of three steps counts a third
+each. The goal at 10000 DDA blocks is then also judged on that steady time.
 
 The machine's load changes every time: the script prints the 1-minute load average before
 and after each run, and the CPU model. Times are wall-clock as nmm measures them.
@@ -53,10 +59,10 @@ def parse_steps(text):
     return steps
 
 
-def run_nmm_counted(nmm, case, out, threads):
+def run_nmm_counted(nmm, case, out, threads, extra=()):
     """run_nmm() with the closed contacts of the last step and the load before and after."""
     before = load_average()
-    summary, rows, elapsed = run_nmm(nmm, case, out, "block_bench", threads)
+    summary, rows, elapsed = run_nmm(nmm, case, out, "block_bench", threads, extra)
     contacts = int(rows[-1]["contacts"]) if rows else 0
     return summary, contacts, elapsed, (before, load_average())
 
@@ -94,6 +100,18 @@ def figures(label, kind, blocks, summary, contacts, elapsed, load):
         "steps_per_second": summary["steps"] / total if total > 0 else float("nan"),
         "load": load,
     }
+
+
+def steady_figures(short, long):
+    """A summary-like dict of the steps @p long ran beyond @p short (the same case, the same
+    first steps): its counters the differences."""
+    later = dict(long)
+    later["steps"] = long["steps"] - short["steps"]
+    later["step_cuts"] = long["step_cuts"] - short["step_cuts"]
+    later["wall_seconds"] = long["wall_seconds"] - short["wall_seconds"]
+    later["counters"] = {k: v - short["counters"].get(k, 0) for k, v in long["counters"].items()
+                         if isinstance(v, (int, float))}
+    return later
 
 
 def verdict(speed):
@@ -192,9 +210,14 @@ def main(argv=None):
     p.add_argument("--threads", type=int, help="nmm --threads (default: nmm's, the usable cores)")
     p.add_argument("--solvers", default="cholmod",
                    help="[analysis] solver of the runs, cholmod and/or pcg (default cholmod)")
+    p.add_argument("--steady", type=int, default=0, metavar="F",
+                   help="also run each rock mass for F times its steps and print the time of "
+                        "a step after the first ones (F >= 2)")
     args = p.parse_args(argv)
     if not os.path.exists(args.nmm):
         sys.exit("block_bench: no %s; build it with `bash scripts/build.sh release`" % args.nmm)
+    if args.steady == 1 or args.steady < 0:
+        sys.exit("block_bench: --steady takes a factor of at least 2")
     steps = parse_steps(args.steps)
     sizes = [int(s) for s in args.sizes.split(",") if s]
     models = [m for m in args.models.split(",") if m]
@@ -214,6 +237,7 @@ def main(argv=None):
     print("  per-step times in ms, means over the run's steps (cut tries included); "
           "load: 1-minute load average before-after the run")
     rows = []
+    steady = []  # (row, steady row) of --steady
     if not args.no_rock_mass:
         for size in sizes:
             for model in models:
@@ -222,19 +246,29 @@ def main(argv=None):
                                                                 size))
                     generate = [sys.executable, os.path.join(ROOT, "bench", "rock_mass.py"),
                                 "--blocks", str(size), "--model", model, "--out", folder,
-                                "--steps", str(steps[size]), "--open-close-max", "20",
-                                "--solver", solver]
+                                "--steps", str(steps[size] * max(args.steady, 1)),
+                                "--open-close-max", "20", "--solver", solver]
                     made = subprocess.run(generate, stdout=subprocess.PIPE,
                                           stderr=subprocess.STDOUT, text=True)
                     if made.returncode != 0:
                         sys.exit("block_bench: %s failed:\n%s" % (" ".join(generate), made.stdout))
                     planned = int(made.stdout.split("planned ")[1].split()[0])
+                    case = os.path.join(folder, "case.toml")
                     summary, contacts, elapsed, load = run_nmm_counted(
-                        args.nmm, os.path.join(folder, "case.toml"), os.path.join(folder, "out"),
-                        args.threads)
+                        args.nmm, case, os.path.join(folder, "out"), args.threads,
+                        ["--steps", str(steps[size])] if args.steady else [])
                     rows.append(figures("rock mass", kind(model, solver), planned, summary,
                                         contacts, elapsed, load))
                     print_table(rows[-1:])
+                    if args.steady:
+                        long_summary, long_contacts, long_elapsed, long_load = run_nmm_counted(
+                            args.nmm, case, os.path.join(folder, "out_steady"), args.threads)
+                        later = steady_figures(summary, long_summary)
+                        steady.append((rows[-1], figures(
+                            "rock mass, steps %d-%d" % (summary["steps"] + 1, long_summary["steps"]),
+                            kind(model, solver), planned, later, long_contacts, long_elapsed,
+                            long_load)))
+                        print_table([steady[-1][1]])
     if not args.no_wall:
         for model in ("dda", "vem"):
             for solver in solvers:
@@ -246,7 +280,11 @@ def main(argv=None):
                 print_table(rows[-1:])
     print()
     print_table(rows)
-    write_tsv(os.path.join(args.work, "block_bench.tsv"), rows)
+    if steady:
+        print()
+        print("after the first steps (--steady %d: the longer run less the shorter):" % args.steady)
+        print_table([later for _, later in steady])
+    write_tsv(os.path.join(args.work, "block_bench.tsv"), rows + [later for _, later in steady])
     print()
     for r in rows:
         if r["label"] == "wall 70":
@@ -258,6 +296,11 @@ def main(argv=None):
             print("goal: at %d DDA blocks at least %.0f steps/s: %.3g steps/s: %s" % (
                 r["blocks"], DDA_GOAL_STEPS_PER_SECOND, r["steps_per_second"],
                 verdict(r["steps_per_second"] / DDA_GOAL_STEPS_PER_SECOND)))
+            for first, later in steady:
+                if first is r:
+                    print("      after its first %d steps (%s): %.3g steps/s: %s" % (
+                        r["steps"], later["label"].split(", ")[1], later["steps_per_second"],
+                        verdict(later["steps_per_second"] / DDA_GOAL_STEPS_PER_SECOND)))
     print("figures: %s" % os.path.join(args.work, "block_bench.tsv"))
     return 0
 

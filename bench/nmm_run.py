@@ -10,8 +10,8 @@ import sys
 import time
 
 
-def run_nmm(nmm, case, out, who, threads=None):
-    """Runs `nmm run CASE -o OUT --quiet` into a fresh @p out.
+def run_nmm(nmm, case, out, who, threads=None, extra=()):
+    """Runs `nmm run CASE -o OUT --quiet [EXTRA...]` into a fresh @p out.
 
     Returns (summary.json as a dict, the rows of history.csv with float values, wall
     seconds). Exits naming @p who (the calling script) and the command when nmm wrote no
@@ -19,7 +19,7 @@ def run_nmm(nmm, case, out, who, threads=None):
     if os.path.isdir(out):
         shutil.rmtree(out)
     command = [nmm] + (["--threads", str(threads)] if threads else [])
-    command += ["run", case, "-o", out, "--quiet"]
+    command += ["run", case, "-o", out, "--quiet"] + list(extra)
     start = time.monotonic()
     done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     elapsed = time.monotonic() - start
