@@ -27,6 +27,18 @@ JointStrength weaker(const JointStrength& a, const JointStrength& b) {
 
 bool closed(ContactMode m) { return m != ContactMode::open; }
 
+/// m += (s h) h^T, entry (a, b) as (s h(a)) h(b): what Eigen's outer product computes, without
+/// its temporary for s h (an allocation for every spring in every open-close iteration).
+void add_outer(Eigen::MatrixXd& m, double s, const Eigen::VectorXd& h) {
+  const Eigen::Index n = h.size();
+  for (Eigen::Index b = 0; b < n; ++b) {
+    const double hb = h(b);
+    double* column = m.col(b).data();
+    for (Eigen::Index a = 0; a < n; ++a)
+      column[a] += (s * h(a)) * hb;
+  }
+}
+
 // Gauss-Legendre points on [0, 1]: two for order-0 covers (the squared gap along an edge is
 // of degree 2), three for order 1 (degree 4).
 constexpr std::array<double, 2> xi2{0.21132486540518712, 0.78867513459481288};
@@ -807,22 +819,6 @@ void ContactSystem::append_point_dofs(const Model& model, int i, std::vector<int
   const std::vector<int>& dofs = cached_kinematics(model, points_[at(i)], at(i)).dofs;
   out.insert(out.end(), dofs.begin(), dofs.end());
 }
-
-namespace {
-
-/// m += (s h) h^T, entry (a, b) as (s h(a)) h(b): what Eigen's outer product computes, without
-/// its temporary for s h (an allocation for every spring in every open-close iteration).
-void add_outer(Eigen::MatrixXd& m, double s, const Eigen::VectorXd& h) {
-  const Eigen::Index n = h.size();
-  for (Eigen::Index b = 0; b < n; ++b) {
-    const double hb = h(b);
-    double* column = m.col(b).data();
-    for (Eigen::Index a = 0; a < n; ++a)
-      column[a] += (s * h(a)) * hb;
-  }
-}
-
-} // namespace
 
 bool ContactSystem::contribution(const Model& model,
                                  int i,
