@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numeric>
 #include <span>
 #include <sstream>
 
@@ -278,26 +279,39 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   // contact whose slave moved on to the next edge (Shi 3.3): (edge, key, state) sorted by
   // edge, and for one edge by decreasing key (the order an std::unordered_multimap filled in
   // increasing key order gave, which decides between two candidates for a transfer: kept so
-  // that the runs stay what they were).
+  // that the runs stay what they were). A counting sort by edge of the keys taken in
+  // decreasing order (keep increases): two std::sort of the 60,000 contacts carried by
+  // 10,004 blocks took 4 ms a step.
   struct ByEdge {
     int edge;
     std::uint64_t key;
     const Carried* state;
-    bool operator<(const ByEdge& other) const {
-      return edge != other.edge ? edge < other.edge : key > other.key;
-    }
   };
-  std::vector<ByEdge> carried_by_slave;
-  std::vector<ByEdge> carried_by_master;
-  carried_by_slave.reserve(keep.size());
-  carried_by_master.reserve(keep.size());
+  std::vector<const Carried*> states;
+  states.reserve(keep.size());
+  int n_edges = 0;
   for (const std::uint64_t key : keep) {
-    const Carried* state = carried_at(key);
-    carried_by_slave.push_back({state->slave, key, state});
-    carried_by_master.push_back({state->master, key, state});
+    states.push_back(carried_at(key));
+    NMM_ASSERT(states.back()->slave >= 0 && states.back()->master >= 0,
+               "a carried contact has its two edges");
+    n_edges = std::max({n_edges, states.back()->slave + 1, states.back()->master + 1});
   }
-  std::sort(carried_by_slave.begin(), carried_by_slave.end());
-  std::sort(carried_by_master.begin(), carried_by_master.end());
+  auto sorted_by_edge = [&](auto edge_of) {
+    std::vector<int> start(at(n_edges) + 1, 0);
+    for (const Carried* state : states)
+      ++start[at(edge_of(*state)) + 1];
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<ByEdge> list(keep.size());
+    for (std::size_t i = keep.size(); i-- > 0;) {
+      const int edge = edge_of(*states[i]);
+      list[at(start[at(edge)]++)] = {edge, keep[i], states[i]};
+    }
+    return list;
+  };
+  const std::vector<ByEdge> carried_by_slave =
+      sorted_by_edge([](const Carried& state) { return state.slave; });
+  const std::vector<ByEdge> carried_by_master =
+      sorted_by_edge([](const Carried& state) { return state.master; });
   auto on_edge = [](const std::vector<ByEdge>& list, int edge) {
     const auto first = std::lower_bound(list.begin(), list.end(), edge,
                                         [](const ByEdge& e, int value) { return e.edge < value; });
@@ -514,9 +528,10 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   holds_ = {};
   save(start_);
   has_converged_ = false;
+  // Every slot's kinematics are of the last step: a new stamp (no pass over 20 MB of slots
+  // at 10,004 blocks).
+  ++kinematics_stamp_;
   kinematics_cache_.resize(points_.size() + 3 * groups_.size());
-  for (CachedKinematics& c : kinematics_cache_)
-    c.valid = false;
   shapes_.clear();
   shape_of_element_.assign(static_cast<std::size_t>(model.n_elements()), -1);
   for (const ContactPoint& p : points_) {
@@ -692,10 +707,10 @@ const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& m
                                                                   KinematicsWork& work) const {
   NMM_ASSERT(slot < kinematics_cache_.size(), "a kinematics slot of this step");
   CachedKinematics& c = kinematics_cache_[slot];
-  if (!c.valid || c.slave_edge != p.slave_edge || c.master != p.master || c.slave != p.slave ||
-      c.anchor != p.anchor || c.offset != p.offset || c.shift != p.shift) {
+  if (c.stamp != kinematics_stamp_ || c.slave_edge != p.slave_edge || c.master != p.master ||
+      c.slave != p.slave || c.anchor != p.anchor || c.offset != p.offset || c.shift != p.shift) {
     kinematics(model, p, c.kinematics, work);
-    c.valid = true;
+    c.stamp = kinematics_stamp_;
     c.slave_edge = p.slave_edge;
     c.master = p.master;
     c.slave = p.slave;

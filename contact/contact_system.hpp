@@ -311,7 +311,7 @@ private:
   /// its springs, its mode decision, its lift-off gaps and the transfer, several times per
   /// open-close iteration, and change only when the point moves (lift-off) or re-anchors.
   struct CachedKinematics {
-    bool valid = false;
+    std::uint64_t stamp = 0; ///< kinematics_stamp_ of the step they are of (0: none)
     int slave_edge = -1;
     int master = -1;
     Point2 slave = Point2::Zero();
@@ -432,6 +432,7 @@ private:
   /// cached_kinematics() slots, made invalid by begin_step() (the geometry moved; their
   /// storage is kept for the next step's).
   mutable std::vector<CachedKinematics> kinematics_cache_;
+  std::uint64_t kinematics_stamp_ = 0; ///< of this step's kinematics_cache_ (1, 2, ...)
   /// Workspaces of kinematics() on this thread, and on each thread of prepare_kinematics().
   mutable KinematicsWork work_;
   mutable std::vector<KinematicsWork> works_;
