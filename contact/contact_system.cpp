@@ -280,8 +280,8 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   // edge, and for one edge by decreasing key (the order an std::unordered_multimap filled in
   // increasing key order gave, which decides between two candidates for a transfer: kept so
   // that the runs stay what they were). A counting sort by edge of the keys taken in
-  // decreasing order (keep increases): two std::sort of the 60,000 contacts carried by
-  // 10,004 blocks took 4 ms a step.
+  // decreasing order (keep increases): building both lists with std::sort took 4 ms a step
+  // for the 60,000 contacts carried by 10,004 blocks.
   struct ByEdge {
     int edge;
     std::uint64_t key;

@@ -21,6 +21,10 @@ std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
 double cross(const Point2& a, const Point2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
+/// The unit normal to the right of the unit direction @p d: an edge's outward normal (the
+/// material is on its left).
+Point2 right_normal(const Point2& d) { return {d.y(), -d.x()}; }
+
 /// Angle of @p d measured counter-clockwise from @p from, in [0, 2 pi).
 double angle_from(const Point2& from, const Point2& d) {
   double a = std::atan2(cross(from, d), from.dot(d));
@@ -218,10 +222,7 @@ private:
   Wedge wedge(int v) const { return nmm::wedge(b_, v, angle_[at(v)]); }
 
   /// ContactBoundary::outward_normal(e) from the stored direction.
-  Point2 outward_normal(int e) const {
-    const Point2& d = direction_[at(e)];
-    return {d.y(), -d.x()};
-  }
+  Point2 outward_normal(int e) const { return right_normal(direction_[at(e)]); }
 
   void add(const ContactCandidate& c) {
     if (seen_.insert(c.key()))
@@ -520,10 +521,7 @@ Point2 ContactBoundary::direction(int e) const {
   return (position[at(next[at(e)])] - position[at(e)]).normalized();
 }
 
-Point2 ContactBoundary::outward_normal(int e) const {
-  const Point2 d = direction(e);
-  return {d.y(), -d.x()};
-}
+Point2 ContactBoundary::outward_normal(int e) const { return right_normal(direction(e)); }
 
 bool ContactBoundary::adjacent(int e, int f) const {
   return e == f || next[at(e)] == f || next[at(f)] == e;

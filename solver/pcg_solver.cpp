@@ -21,6 +21,11 @@ namespace {
 /// runs of unknowns with one pattern (a small dense system) are split.
 constexpr int max_block = 12;
 
+/// The preconditioner's blocks go to the worker threads from twice this many on (a DDA
+/// block's product with its 6 x 6 inverse is a few dozen operations; fewer blocks than this
+/// per thread are not worth a thread's start). The results are the same either way.
+constexpr std::size_t parallel_blocks = 4096;
+
 } // namespace
 
 struct PcgSolver::Impl {
@@ -103,7 +108,7 @@ struct PcgSolver::Impl {
   void precondition(const Eigen::VectorXd& residual, Eigen::VectorXd& result) const {
     result.resize(residual.size());
     const std::size_t blocks = block_start.empty() ? 0 : block_start.size() - 1;
-    parallel_for(blocks, 4096, [&](std::size_t first, std::size_t last, int /*chunk*/) {
+    parallel_for(blocks, parallel_blocks, [&](std::size_t first, std::size_t last, int /*chunk*/) {
       for (std::size_t b = first; b < last; ++b) {
         const int s = block_start[b];
         const int m = block_start[b + 1] - s;
