@@ -72,5 +72,41 @@ TEST(KeyIndex, HoldsWhatAStandardMapHoldsThroughGrowthAndClearing) {
   EXPECT_EQ(KeyIndex().find(0), KeyIndex::none); // a new table
 }
 
+TEST(KeySet, ManyKeysWithOneHighPartAndNeighbouringIndicesStayExact) {
+  // The table starts a key's probe near those of its neighbouring high parts; 20,000 keys with
+  // one high part (one edge against every vertex of a long row) make a run far beyond the 64
+  // probes after which it scatters them: every answer stays std::unordered_set's, for them
+  // and for the keys of dense neighbouring indices (pairs, and contact keys: slave << 33).
+  KeySet keys;
+  std::unordered_set<std::uint64_t> reference;
+  auto both = [&](std::uint64_t key) { ASSERT_EQ(keys.insert(key), reference.insert(key).second); };
+  for (std::uint64_t v = 0; v < 2000; ++v) {
+    for (std::uint64_t w = v + 1; w < v + 4; ++w)
+      both(v << 32U | w);
+    both(v << 33U | (v + 7) << 1U | 1U);
+  }
+  EXPECT_FALSE(keys.scattered()); // neighbouring indices make no long runs
+  for (std::uint64_t k = 0; k < 20000; ++k)
+    both(std::uint64_t{5} << 32U | (k * 7919U % 100000U));
+  EXPECT_TRUE(keys.scattered());
+  EXPECT_EQ(keys.size(), reference.size());
+  for (const std::uint64_t key : reference)
+    ASSERT_TRUE(keys.contains(key));
+  for (std::uint64_t v = 0; v < 2000; ++v)
+    ASSERT_EQ(keys.contains(v << 32U | (v + 5)), reference.count(v << 32U | (v + 5)) != 0);
+}
+
+TEST(KeyIndex, KeepsItsValuesWhenTheTableScattersItsKeys) {
+  // A run of 1,000 keys with one high part turns the table to the scattering hash half way
+  // through; the values inserted before and after are all found.
+  KeyIndex keys;
+  for (int k = 0; k < 1000; ++k)
+    ASSERT_TRUE(keys.insert(std::uint64_t{3} << 32U | static_cast<std::uint64_t>(k), k));
+  EXPECT_TRUE(keys.scattered());
+  for (int k = 0; k < 1000; ++k)
+    ASSERT_EQ(keys.find(std::uint64_t{3} << 32U | static_cast<std::uint64_t>(k)), k);
+  EXPECT_EQ(keys.find(std::uint64_t{4} << 32U), KeyIndex::none);
+}
+
 } // namespace
 } // namespace nmm
