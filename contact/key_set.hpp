@@ -60,16 +60,14 @@ public:
     NMM_ASSERT(key != empty, "the key with all bits set is reserved");
     if (2 * (size_ + 1) > keys_.size())
       rebuild(2 * keys_.size());
-    std::size_t i = home(key);
-    for (int probes = 0; keys_[i] != empty; ++probes) {
-      if (keys_[i] == key)
-        return false;
-      if (probes == max_local_probes && !scattered_) {
-        scattered_ = true;
-        rebuild(keys_.size());
-        return insert(key, value);
-      }
-      i = (i + 1) & mask_;
+    std::size_t probes = 0;
+    const std::size_t i = slot(key, &probes);
+    if (keys_[i] == key)
+      return false;
+    if (probes > max_local_probes && !scattered_) {
+      scattered_ = true;
+      rebuild(keys_.size());
+      return insert(key, value);
     }
     keys_[i] = key;
     if (with_values_)
@@ -94,7 +92,7 @@ public:
 
 private:
   static constexpr std::uint64_t empty = ~std::uint64_t{0};
-  static constexpr int max_local_probes = 64;
+  static constexpr std::size_t max_local_probes = 64;
 
   /// splitmix64's finaliser.
   static std::uint64_t hash(std::uint64_t key) noexcept {
@@ -113,12 +111,16 @@ private:
     return ((key >> 32U) * 8U + (hash(key & 0xffffffffU) & 7U)) & mask_;
   }
 
-  /// The slot holding @p key, or the empty slot that ends its probe. Never loops for ever:
-  /// the table is at most half full.
-  [[nodiscard]] std::size_t slot(std::uint64_t key) const noexcept {
+  /// The slot holding @p key, or the empty slot that ends its probe; @p probes (if given)
+  /// gets the number of other keys passed on the way. Never loops for ever: the table is at
+  /// most half full.
+  [[nodiscard]] std::size_t slot(std::uint64_t key, std::size_t* probes = nullptr) const noexcept {
     std::size_t i = home(key);
-    while (keys_[i] != empty && keys_[i] != key)
+    std::size_t passed = 0;
+    for (; keys_[i] != empty && keys_[i] != key; ++passed)
       i = (i + 1) & mask_;
+    if (probes != nullptr)
+      *probes = passed;
     return i;
   }
 
