@@ -65,6 +65,12 @@ struct ContactOptions {
   /// ... and the springs left where the edges no longer press pull with less than this
   /// fraction (tension adds to the normal force elsewhere, and so to friction).
   double tension_tolerance = 1e-6;
+  /// A contact whose lift-off point went back settles: it then only gives up springs that
+  /// pull. When the part it leaves out would take more force than the contact bears, its
+  /// lift-off points search for the place between their last two (false position) for at
+  /// most this many moves in a step, and then it settles for good (docs/formulation.md,
+  /// "Lift-off").
+  int lift_off_searches = 4;
   /// Augmented Lagrange (Lin, Amadei, Jung and Dwyer 1996; Simo and Laursen 1992): when a
   /// converged open-close iteration leaves a closed contact penetrating by more than this,
   /// every closed spring's zero moves by its penetration (its force so far becomes a
@@ -130,6 +136,26 @@ struct ContactPoint {
     return 0.0;
   return p.normal_force * std::tan(p.strength.friction_angle);
 }
+
+/// One end of the part of an edge-to-edge overlap that has springs, as the lift-off
+/// iteration moves it (docs/formulation.md, "Lift-off"). Where the springs should end is
+/// a root of wanted(x) - x, wanted(x) being where the edges stop pressing when the springs
+/// end at x: more springs, less pressed. A search finds it by false position (Illinois)
+/// between the two last places, one on each side.
+struct LiftOffEnd {
+  double moved = 0.0;     ///< the last move (its sign: which way the end went)
+  bool bracketed = false; ///< the root lies between a and b
+  double a = 0.0;         ///< a place of the end, and wanted - a there
+  double ga = 0.0;
+  double b = 0.0; ///< another, with wanted - b of the other sign
+  double gb = 0.0;
+  int kept = 0; ///< the bracket end the last search step kept (+1: b, -1: a)
+  /// The next place of a searching end now at @p now whose edges stop pressing at
+  /// @p wanted: @p wanted until a move goes back, then false position in the bracket of the
+  /// last two places; a bracket narrower than @p negligible no longer holds the root (the
+  /// pair's motion changed under it), and the end goes to @p wanted again.
+  [[nodiscard]] double next(double now, double wanted, double negligible);
+};
 
 /// What one open-close iteration found.
 struct ModeUpdate {
@@ -336,12 +362,15 @@ private:
     double to = 1.0;
     double t_first = 0.0;
     double t_next = 0.0;
-    /// Last move of the ends of the part with springs. A lift-off point at nearly zero
-    /// pressure can swing between two places for ever; at the first move back it settles on
-    /// the part pressed in both places for the rest of the step.
-    double moved_from = 0.0;
-    double moved_to = 0.0;
+    /// The two ends of the part with springs as the lift-off iteration moves them.
+    LiftOffEnd from_end;
+    LiftOffEnd to_end;
+    /// The contact made its first move back (it then only gives up springs that pull) ...
     bool settled = false;
+    /// ... unless the part it leaves out would take more than its whole normal force: then
+    /// its ends search (LiftOffEnd), for ContactOptions::lift_off_searches moves at most.
+    bool searching = false;
+    int searches = 0;
   };
   /// State of a closed contact carried to the next step.
   struct Carried {

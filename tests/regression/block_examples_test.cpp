@@ -237,9 +237,9 @@ TEST_F(Example, TunnelOf36DdaBlocksStandsWithTheArchStressesOfThePaper) {
   // automatic step (sqrt(D / g) = 0.1 s), 100 steps, phi = 30 and 0 degrees. The geometry is
   // assumed (README), so the paper's stresses are a magnitude, not digits: the inner layer's
   // top pair sigma2 -109.7 kPa (phi 30) and -117.6 kPa (phi 0), the bottom pair -138.6 and
-  // -227.5 kPa. Measured (README, Results): phi 30 crown 9.7 mm, top sigma2 -79..-80 kPa,
-  // bottom -98..-99 kPa (2026-11-28); phi 0 crown 22.1-22.5 mm, top -152.5 kPa, bottom
-  // -300.5 kPa.
+  // -227.5 kPa. Measured (README, Results, 2026-11-29): phi 30 crown 9.2-9.3 mm, top sigma2
+  // -78..-80 kPa, bottom -97..-99 kPa; phi 0 crown 22.0-22.3 mm, top -152.2 kPa, bottom
+  // -296..-298 kPa.
   // Checks: the rock stands (the crown's settlement in the last 50 steps below 1 mm, against
   // 9-23 mm in all: a mechanism would fall 0.05 m per step); the top pair's sigma2 within a
   // factor 2 of the paper's (the assumed geometry: README), and the bottom pair's at least as
