@@ -25,7 +25,8 @@ and checks nmm's own history.csv and summary.json against the criterion of each 
   every row finite; the energy never grows: the kinetic energy never exceeds the work the
   loads did (history.csv load_work; strain and spring energies are >= 0), to 1e-9 of the
   largest work; the deepest penetration below 1e-3 of the block size; the block at rest on
-  the base at the end (kinetic energy below 1e-9 of the work done).
+  the base at the end (kinetic energy below 1e-9 of the work done; not with --quick, whose
+  1e4 steps end while the block still rocks on its springs).
 - pile_1000: issue 8's "many simultaneous contacts": 1000 convex DDA blocks settling in a
   held box. The blocks are the Voronoi cells of sites jittered by +-0.35 m about the centres
   of a 50 x 20 grid of 1 m (4 to 8 sides, 0.47 to 1.4 m2, no edge under 0.1 m), each offset
@@ -224,14 +225,18 @@ def drop(args):
     last = rows[-1]
     rest = last["kinetic_energy"] / work
     cuts = sum(row["step_cuts"] for row in rows)
+    # At rest only after the full 100 s: in the 10 s of --quick the block still rocks on its
+    # springs (kinetic energy 8.1e-6 of the work at the end, 2026-11-29), which that smoke
+    # test is not about.
     passed = (summary["status"] == "completed" and finite and gain < 1e-9
-              and deepest < 1e-3 * 0.5 and rest < 1e-9)
+              and deepest < 1e-3 * 0.5 and (args.quick or rest < 1e-9))
     result = ("%d steps, %s, %d cuts; largest KE - work %.1e of the work, deepest penetration "
               "%.1e m, final KE %.1e of the work, centre at y = %.6f m" %
               (len(rows), "finite" if finite else "NaN", cuts, gain, deepest, rest,
                last["centre.y"]))
     criterion = ("%d steps: no NaN, kinetic energy <= work of the loads (1e-9), penetration < "
-                 "1e-3 of the block, at rest at the end" % len(rows))
+                 "1e-3 of the block%s" %
+                 (len(rows), "" if args.quick else ", at rest at the end (1e-9 of the work)"))
     return criterion, result, passed, seconds
 
 
