@@ -1208,7 +1208,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
           (from - g.from) * g.from_end.moved < 0.0 || (to - g.to) * g.to_end.moved < 0.0;
       const bool overlap = std::min(to, g.to) - std::max(from, g.from) > 1e-6 * (g.hi - g.lo);
       if (g.searching && g.searches >= options_.lift_off_searches)
-        g.searching = false; // settled for good
+        g.stop_search(); // settled for good
       if (!g.settled && back && (pulls || pushes)) {
         g.settled = true; // this first move back is made
       } else if (g.settled && overlap && g.searches < options_.lift_off_searches &&
@@ -1236,9 +1236,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       } else if (g.settled) {
         if (!pulls && !pushes)
           continue;
-        g.searching = false;
-        g.from_end.bracketed = false;
-        g.to_end.bracketed = false;
+        g.stop_search();
       } else if (!pulls && !pushes) {
         continue;
       }
@@ -1247,9 +1245,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         g.to_end.moved = to - g.to;
       }
     } else {
-      g.searching = false;
-      g.from_end.bracketed = false;
-      g.to_end.bracketed = false;
+      g.stop_search();
     }
     std::vector<std::pair<double, double>> offsets;
     const std::vector<std::pair<double, double>> shifts = shifts_of(g);

@@ -371,6 +371,12 @@ private:
     /// its ends search (LiftOffEnd), for ContactOptions::lift_off_searches moves at most.
     bool searching = false;
     int searches = 0;
+    /// Ends the search (its brackets hold for this overlap and these springs only).
+    void stop_search() noexcept {
+      searching = false;
+      from_end.bracketed = false;
+      to_end.bracketed = false;
+    }
   };
   /// State of a closed contact carried to the next step.
   struct Carried {
