@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages the build and tests need, only those missing.
 # Usage: scripts/deps.sh [--tests]   (--tests adds the test/benchmark-only packages)
 set -euo pipefail
-packages=(g++ cmake make
+packages=(g++ cmake make ninja-build
           libeigen3-dev libcgal-dev libgmsh-dev libsuitesparse-dev libopenblas-dev
           libvtk9-dev libtomlplusplus-dev libcli11-dev
           libgtest-dev libgmock-dev libbenchmark-dev)
