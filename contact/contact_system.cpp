@@ -286,6 +286,7 @@ ContactBoundary contact_boundary(const Model& model) {
 }
 
 void ContactSystem::begin_step(const Model& model, double max_step_displacement) {
+  coupled_friction_ = false;
   // The boundary at the start of the step, and what each edge carries.
   boundary_ = contact_boundary(model);
   edge_element_.clear();
@@ -899,6 +900,8 @@ bool ContactSystem::contribution(const Model& model,
     if (stiffness != nullptr)
       add_outer(*stiffness, p.stiffness, hs);
     load -= p.stiffness * k.s0 * hs;
+  } else if (friction_coupled(p)) {
+    return true; // its friction is in the solve: friction_coupling()
   } else if (const double friction = friction_force(p); friction != 0.0) {
     // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
     // from the normal force of the last iteration so that the matrix stays symmetric.
@@ -906,6 +909,37 @@ bool ContactSystem::contribution(const Model& model,
     return true;
   }
   return false;
+}
+
+std::vector<ContactSystem::FrictionCoupling>
+ContactSystem::friction_coupling(const Model& model) const {
+  std::vector<FrictionCoupling> coupling;
+  for (const Group& g : groups_) {
+    const ContactPoint& lead = points_[at(g.first)];
+    if (!friction_coupled(lead))
+      continue;
+    double placed = 0.0;
+    for (int q = 0; q < g.count; ++q)
+      placed += points_[at(g.first + q)].stiffness;
+    FrictionCoupling f;
+    f.point = g.first;
+    f.coef = static_cast<double>(lead.slide_sign) * std::tan(lead.strength.friction_angle);
+    const std::vector<int>& dofs = cached_kinematics(model, lead, at(g.first)).dofs;
+    f.w.setZero(static_cast<Eigen::Index>(dofs.size()));
+    f.a.setZero(f.w.size());
+    // The friction of the pair, tan(phi) times the springs' resultant, shared among its points
+    // by stiffness as update_modes() shares the normal force.
+    for (int q = 0; q < g.count; ++q) {
+      const ContactPoint& p = points_[at(g.first + q)];
+      const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
+      NMM_ASSERT(k.dofs == dofs, "the points of a contact couple the same unknowns");
+      f.w += (placed > 0.0 ? p.stiffness / placed : 0.0) * k.hs;
+      f.a += p.stiffness * k.hn;
+      f.c0 += p.stiffness * k.g0;
+    }
+    coupling.push_back(std::move(f));
+  }
+  return coupling;
 }
 
 ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd& raw) {
@@ -1020,6 +1054,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     const double friction = std::tan(lead.strength.friction_angle);
     const double limit = std::max(0.0, bearing) * friction + cohesion;
     const ContactMode before = lead.mode;
+    const bool coupled = friction_coupled(lead); // in the solve that gave raw
     ContactMode after = before;
     bool breaks = false;
     int sign = lead.slide_sign;
@@ -1162,8 +1197,11 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       friction_total += work * std::abs(now);
       // A change of the normal force within that of the springs stretched by the rounding is
       // none (the friction of a contact at a tie, on a normal force of rounding, would be
-      // chased for ever: its relative change never settles).
-      const double change = before == ContactMode::slide ? now - used : now;
+      // chased for ever: its relative change never settles). Coupled friction acted with the
+      // normal force of this very solve: the springs' resultant, which differs from what the
+      // pair bears only by springs that pull within tension_tolerance (or that the next
+      // lift-off move takes away), so it has no change to chase.
+      const double change = coupled ? 0.0 : before == ContactMode::slide ? now - used : now;
       if (std::abs(change) > noise)
         friction_change += work * std::abs(change);
     }

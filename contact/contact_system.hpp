@@ -278,6 +278,30 @@ public:
   /// being held locked beyond it (docs/formulation.md, "Chatter rule").
   void set_dynamic(bool dynamic);
 
+  /// While set, the friction of a sliding contact is no load from the normal force of the
+  /// last iteration: it is coupled to the normal force of the solve itself. contribution()
+  /// leaves it out, friction_coupling() gives it as a term of rank one of the step matrix,
+  /// and update_modes() measures its consistency against the springs' resultant
+  /// (docs/formulation.md, "Coupled friction"). Off after begin_step().
+  void set_coupled_friction(bool coupled) noexcept { coupled_friction_ = coupled; }
+
+  /// The friction of one sliding contact coupled to its normal force. With the step
+  /// displacement d on the unknowns point_dofs(point), the contact's normal force is
+  /// N = -(c0 + a . d) (compressive positive) and its friction acts as the load
+  /// coef (c0 + a . d) w = -sign tan(phi) N w: the matrix gains the unsymmetric term
+  /// -coef w a^T and the load coef c0 w (Shi eq. 3.27-3.33 with N of the same solve).
+  struct FrictionCoupling {
+    int point = 0;     ///< the contact's first point
+    double coef = 0.0; ///< slide sign x tan(friction angle)
+    double c0 = 0.0;   ///< -N at d = 0, N
+    Eigen::VectorXd w; ///< the points' shear directions, each by its share of the springs
+    Eigen::VectorXd a; ///< the springs' normal directions times their stiffnesses
+  };
+  /// The coupled friction of every sliding contact with friction (empty unless
+  /// set_coupled_friction(true)); a contact that just closed has it too: its normal force is
+  /// that of the solve, not the penetration it reached while open.
+  [[nodiscard]] std::vector<FrictionCoupling> friction_coupling(const Model& model) const;
+
   /// Stores the closed contacts (and their anchors, forces, bonds) for the next step; to be
   /// called with the step's final displacement, before the model moves.
   void end_step(const Model& model, const Eigen::VectorXd& raw);
@@ -511,6 +535,11 @@ private:
   std::vector<std::pair<double, double>> held_against_;
   FrictionHolds holds_; ///< holds()
   bool dynamic_ = false;
+  bool coupled_friction_ = false; ///< set_coupled_friction()
+  /// Whether point @p p's friction is coupled in the solve (set_coupled_friction()).
+  [[nodiscard]] bool friction_coupled(const ContactPoint& p) const noexcept {
+    return coupled_friction_ && p.mode == ContactMode::slide && p.strength.friction_angle > 0.0;
+  }
   /// Rounding of the coordinates of the step, m: gaps and motions within it change no mode.
   double rounding_ = 0.0;
   ContactCounters counters_;

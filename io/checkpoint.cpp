@@ -22,8 +22,9 @@ namespace fs = std::filesystem;
 // version 4 (2026-11-28), locks_beyond_friction and max_lock_excess; version 5 (the same day),
 // slides_against_motion and slide_feed_work; version 6 (2026-11-28), the linear solver's
 // conjugate-gradient iterations and fallbacks, the steps they skip (PcgSolver::carried()),
-// and the last step's accelerations (their first guess).
-constexpr std::string_view magic = "nmm checkpoint, version 6\n";
+// and the last step's accelerations (their first guess); version 7 (2026-11-29),
+// coupled_friction_tries and coupled_friction_iterations.
+constexpr std::string_view magic = "nmm checkpoint, version 7\n";
 constexpr std::int64_t byte_order = 0x0102030405060708;
 
 /// 64-bit FNV-1a: a fingerprint, not a defence against tampering.

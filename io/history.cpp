@@ -267,6 +267,8 @@ std::string summary_json(const RunSummary& s) {
   counters.integer("cg_fallbacks", s.solver_counters.fallbacks);
   counters.integer("plan_rebuilds", s.counters.plan_rebuilds);
   counters.integer("augmentations", s.counters.augmentations);
+  counters.integer("coupled_friction_tries", s.counters.coupled_friction_tries);
+  counters.integer("coupled_friction_iterations", s.counters.coupled_friction_iterations);
   counters.integer("locks_beyond_friction", s.counters.locks_beyond_friction);
   counters.integer("slides_against_motion", s.counters.slides_against_motion);
   counters.number("slide_feed_work", s.counters.slide_feed_work);

@@ -6,6 +6,7 @@
 #include "mesh/error.hpp"
 #include "solver/assembler.hpp"
 #include "solver/cholmod_solver.hpp"
+#include "solver/low_rank_solve.hpp"
 #include "solver/sparsity.hpp"
 
 #include <algorithm>
@@ -359,10 +360,17 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   }
   lap(clock, counters_.seconds_detection);
   double work = 0.0; // of the loads in the step (its last try)
-  for (int cut = 0;; ++cut) {
+  // Whether this try couples friction to the normal force in the solve (docs/formulation.md,
+  // "Coupled friction"): a step whose open-close iteration does not converge with friction as
+  // loads from the last iteration is tried again that way before it is cut.
+  bool coupled = false;
+  for (int attempt = 0;; ++attempt) {
+    const int cut = report.step_cuts;
     lap(clock, counters_.seconds_step_control); // the checks of a try that was cut
-    if (cut > 0 && impl_->contact)
+    if (attempt > 0 && impl_->contact)
       impl_->contact->restart_step();
+    if (impl_->contact)
+      impl_->contact->set_coupled_friction(coupled);
     lap(clock, counters_.seconds_detection); // (the contact states back to the step's start)
     const double t1 = time_ + dt;
     // Constraints and the reduction of every element.
@@ -574,6 +582,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
     int friction_solves = 0;
     int open_close = 0; // iterations that changed a contact's mode
     int augmentations = 0;
+    bool had_friction = false; // a sliding contact with friction in some iteration of the try
     // An iterative solver's first guess: Shi's step displacement d = v dt + a dt^2 / 2 with
     // the last step's acceleration (zero in static steps); then each open-close iteration
     // starts from the last one's solution. At 10,004 DDA blocks falling from rest the guess
@@ -588,6 +597,63 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         }
       }
     }
+    // A solve with coupled friction: each sliding contact's friction as the term -coef w a^T
+    // of rank one and the load coef (c0 + a . t0) w in the reduced unknowns
+    // (ContactSystem::FrictionCoupling; t0: the constant of the expansion of its unknowns),
+    // solved by GMRES preconditioned with the factor of the symmetric matrix.
+    auto solve_coupled = [&](const Eigen::VectorXd& rhs, Eigen::VectorXd& solution) {
+      const std::vector<ContactSystem::FrictionCoupling> terms =
+          impl_->contact->friction_coupling(model_);
+      if (terms.empty()) {
+        LowRankSolveReport direct;
+        direct.status = impl_->solver->solve(rhs, solution);
+        direct.converged = true;
+        return direct;
+      }
+      std::vector<Eigen::Triplet<double>> u_entries;
+      std::vector<Eigen::Triplet<double>> v_entries;
+      Eigen::VectorXd b = rhs;
+      auto add = [&](int column, int unknown, double along, double normal, double load) {
+        u_entries.emplace_back(unknown, column, along);
+        v_entries.emplace_back(unknown, column, normal);
+        b(unknown) += load * along;
+      };
+      for (std::size_t j = 0; j < terms.size(); ++j) {
+        const ContactSystem::FrictionCoupling& term = terms[j];
+        const auto column = static_cast<int>(j);
+        const int transform = contact_transform[at(term.point)];
+        if (transform < 0) {
+          const std::span<const int> dofs = contact_point_dofs(term.point);
+          for (std::size_t l = 0; l < dofs.size(); ++l) {
+            const auto i = static_cast<Eigen::Index>(l);
+            add(column, map.reduced(dofs[l]), -term.coef * term.w(i), term.a(i), -term.c0);
+          }
+          continue;
+        }
+        const Reduction& r = transforms[at(transform)];
+        const Eigen::VectorXd w = r.transform.transpose() * term.w;
+        const Eigen::VectorXd gradient = r.transform.transpose() * term.a;
+        const double c0 = term.c0 + term.a.dot(r.constant);
+        for (std::size_t l = 0; l < r.reduced.size(); ++l) {
+          const auto i = static_cast<Eigen::Index>(l);
+          add(column, r.reduced[l], -term.coef * w(i), gradient(i), -c0);
+        }
+      }
+      const auto n = static_cast<Eigen::Index>(map.n_reduced());
+      const auto m = static_cast<Eigen::Index>(terms.size());
+      SparseMatrix u(n, m);
+      SparseMatrix v(n, m);
+      u.setFromTriplets(u_entries.begin(), u_entries.end());
+      v.setFromTriplets(v_entries.begin(), v_entries.end());
+      // GMRES ends within m + 1 iterations but for the rounding; a try that needs more than
+      // the budget is cut as before.
+      const int budget = static_cast<int>(
+          std::min<Eigen::Index>(m + 10, options_.coupled_friction_iterations_max));
+      const LowRankSolveReport gmres = solve_low_rank_update(
+          *impl_->solver, u, v, b, solution, options_.coupled_friction_tolerance, budget);
+      counters_.coupled_friction_iterations += gmres.iterations;
+      return gmres;
+    };
     for (;;) {
       ++iteration;
       Eigen::VectorXd f_iteration = f;
@@ -602,8 +668,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           const ContactPoint& point = impl_->contact->points()[at(i)];
           if (point.mode == ContactMode::open)
             continue; // no spring, no load
-          if (impl_->contact->contribution(model_, i, assemble ? &spring : nullptr, load))
+          if (impl_->contact->contribution(model_, i, assemble ? &spring : nullptr, load)) {
             ++counters_.friction_terms;
+            had_friction = true;
+          }
           const std::span<const int> dofs = contact_point_dofs(i);
           NMM_ASSERT(static_cast<std::size_t>(load.size()) == dofs.size(),
                      "a contact point's unknowns stay those of the step's start");
@@ -631,7 +699,15 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         ++factorisations;
       }
       lap(clock, counters_.seconds_factorization);
-      const SolveStatus solved = impl_->solver->solve(rhs, reduced);
+      SolveStatus solved = SolveStatus::ok;
+      if (coupled) {
+        const LowRankSolveReport gmres = solve_coupled(rhs, reduced);
+        solved = gmres.status;
+        if (solved == SolveStatus::ok && !gmres.converged)
+          break; // the try fails (its step is cut)
+      } else {
+        solved = impl_->solver->solve(rhs, reduced);
+      }
       if (solved == SolveStatus::not_positive_definite) // found by CHOLMOD after CG failed
         throw NumericalError(singular_message(model_, map, impl_->solver->failed_column(), solved));
       if (solved != SolveStatus::ok)
@@ -694,6 +770,17 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       // pile_1000_al was cut 2504 times in 750 steps and never settled.
       converged = true;
       warn_penetration(impl_->contact->max_penetration(), impl_->contact->options(), true);
+    }
+    if (!converged && !coupled && had_friction && !equilibrium && !options_.conjugate_gradients) {
+      // Friction as loads from the normal forces of the last iteration can keep the iteration
+      // from converging where the contact springs are much stiffer than the bodies (the
+      // pairs along a sliding block's base opening and closing in turn, iteration after
+      // iteration): the step is tried again with friction coupled to the normal force in the
+      // solve, before it is cut (docs/formulation.md, "Coupled friction"; conjugate
+      // gradients have no factor to precondition its GMRES with).
+      coupled = true;
+      ++counters_.coupled_friction_tries;
+      continue;
     }
     if (!converged) {
       // Shi 8.2: not converged within the allowed iterations: the step is cut to a third.
@@ -894,7 +981,9 @@ std::vector<long*> work_counters(StepperCounters& c) {
           &c.friction_terms,
           &c.augmentations,
           &c.locks_beyond_friction,
-          &c.slides_against_motion};
+          &c.slides_against_motion,
+          &c.coupled_friction_tries,
+          &c.coupled_friction_iterations};
 }
 
 } // namespace

@@ -45,6 +45,12 @@ struct StepperOptions {
   /// Solves with the same factor for friction alone (no mode changed, the friction loads
   /// still moving) per step before the step is cut.
   int friction_solves_max = 50;
+  /// A try with coupled friction (docs/formulation.md, "Coupled friction") solves each system
+  /// by GMRES to this relative residual ...
+  double coupled_friction_tolerance = 1e-12;
+  /// ... in at most this many iterations (one solve with the factor each; fewer when there
+  /// are fewer sliding contacts: GMRES ends within their number + 1), or the try is cut.
+  int coupled_friction_iterations_max = 100;
   /// Solve the step systems by conjugate gradients with these settings (PcgSolver, CHOLMOD
   /// where they do not converge); empty: by CHOLMOD.
   std::optional<PcgOptions> conjugate_gradients;
@@ -100,6 +106,11 @@ struct StepperCounters {
   /// Augmented-Lagrange passes (ContactOptions::penetration_tolerance): solves again with the
   /// same matrix after the springs' zeros moved by their penetrations.
   long augmentations = 0;
+  /// Tries of a step with friction coupled to the normal force in the solve, after the
+  /// open-close iteration did not converge with friction as loads, and their GMRES
+  /// iterations (one solve with the factor each).
+  long coupled_friction_tries = 0;
+  long coupled_friction_iterations = 0;
   /// Steps that ended with a contact held locked beyond its friction limit by the chatter
   /// rule (ModeUpdate::lock_excess), and the largest shear over limit among them (0: Coulomb's
   /// law held at every contact at the end of every step, to a negligible force).
