@@ -13,6 +13,7 @@
 namespace nmm {
 
 LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
+                                         const SparseMatrix& a,
                                          const SparseMatrix& u,
                                          const SparseMatrix& v,
                                          const Eigen::VectorXd& b,
@@ -23,9 +24,22 @@ LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
              "U and V are n x m for a system of n unknowns");
   NMM_ASSERT(max_iterations > 0, "GMRES needs at least one iteration");
   LowRankSolveReport report;
-  x.setZero(b.size());
-  const double beta = b.norm();
-  if (beta == 0.0) {
+  const double scale = b.norm(); // the tolerance is relative to the right side
+  if (scale == 0.0) {            // x = 0, whatever the guess
+    x.setZero(b.size());
+    report.converged = true;
+    return report;
+  }
+  Eigen::VectorXd residual = b;
+  if (x.size() == b.size()) {
+    const SparseMatrix& upper = a;
+    residual -= upper.selfadjointView<Eigen::Upper>() * x + u * (v.transpose() * x);
+  } else {
+    x.setZero(b.size());
+  }
+  const double beta = residual.norm();
+  report.relative_residual = beta / scale;
+  if (beta <= tolerance * scale) {
     report.converged = true;
     return report;
   }
@@ -42,7 +56,7 @@ LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
   Eigen::VectorXd s = Eigen::VectorXd::Zero(max_iterations);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(max_iterations + 1);
   g(0) = beta;
-  q.push_back(b / beta);
+  q.push_back(residual / beta);
   Eigen::VectorXd w;
   int k = 0;
   while (k < max_iterations) {
@@ -72,7 +86,7 @@ LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
     g(k + 1) = -s(k) * g(k);
     g(k) *= c(k);
     ++k;
-    report.relative_residual = std::abs(g(k)) / beta;
+    report.relative_residual = std::abs(g(k)) / scale;
     if (report.relative_residual <= tolerance || next == 0.0) {
       report.converged = true;
       break;

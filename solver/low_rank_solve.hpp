@@ -17,7 +17,9 @@ struct LowRankSolveReport {
 };
 
 /// Solves (A + U V^T) x = b, where @p factor holds the factorisation of the symmetric matrix
-/// A and U, V are n x m with m small against n: GMRES on (A + U V^T) A^-1 y = b, x = A^-1 y
+/// A (@p a, its upper triangle) and U, V are n x m with m small against n, starting from
+/// @p x when it has the system's size (the caller's guess: GMRES then solves for the
+/// correction) and from zero otherwise: GMRES on (A + U V^T) A^-1 y = r, x = x0 + A^-1 y
 /// (right preconditioning by the factor; Saad, Iterative Methods for Sparse Linear Systems,
 /// 2nd ed., 2003, sections 6.5 and 9.3). The preconditioned matrix is I + U (V^T A^-1),
 /// the identity plus a term of rank m, so in exact arithmetic GMRES ends within m + 1
@@ -26,6 +28,7 @@ struct LowRankSolveReport {
 /// @p max_iterations (converged false). @p factor must be a direct solver: an iterative
 /// one's inexact solves would make the residual a wrong estimate.
 [[nodiscard]] LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
+                                                       const SparseMatrix& a,
                                                        const SparseMatrix& u,
                                                        const SparseMatrix& v,
                                                        const Eigen::VectorXd& b,

@@ -649,8 +649,9 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       // the budget is cut as before.
       const int budget = static_cast<int>(
           std::min<Eigen::Index>(m + 10, options_.coupled_friction_iterations_max));
-      const LowRankSolveReport gmres = solve_low_rank_update(
-          *impl_->solver, u, v, b, solution, options_.coupled_friction_tolerance, budget);
+      const LowRankSolveReport gmres =
+          solve_low_rank_update(*impl_->solver, a.matrix(), u, v, b, solution,
+                                options_.coupled_friction_tolerance, budget);
       counters_.coupled_friction_iterations += gmres.iterations;
       return gmres;
     };
@@ -771,7 +772,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       converged = true;
       warn_penetration(impl_->contact->max_penetration(), impl_->contact->options(), true);
     }
-    if (!converged && !coupled && had_friction && !equilibrium && !options_.conjugate_gradients) {
+    if (!converged && !coupled && had_friction && !equilibrium && options_.coupled_friction &&
+        !options_.conjugate_gradients) {
       // Friction as loads from the normal forces of the last iteration can keep the iteration
       // from converging where the contact springs are much stiffer than the bodies (the
       // pairs along a sliding block's base opening and closing in turn, iteration after

@@ -45,7 +45,12 @@ struct StepperOptions {
   /// Solves with the same factor for friction alone (no mode changed, the friction loads
   /// still moving) per step before the step is cut.
   int friction_solves_max = 50;
-  /// A try with coupled friction (docs/formulation.md, "Coupled friction") solves each system
+  /// A step whose open-close iteration does not converge with friction as loads from the
+  /// last iteration, with a sliding contact that has friction, is tried again with friction
+  /// coupled to the normal force in the solve before it is cut (docs/formulation.md,
+  /// "Coupled friction"; not with conjugate_gradients); false: it is cut at once.
+  bool coupled_friction = true;
+  /// A try with coupled friction solves each system
   /// by GMRES to this relative residual ...
   double coupled_friction_tolerance = 1e-12;
   /// ... in at most this many iterations (one solve with the factor each; fewer when there

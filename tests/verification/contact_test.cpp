@@ -22,6 +22,7 @@ namespace {
 
 using testing::contact_for;
 using testing::elastic;
+using testing::Incline;
 using testing::line;
 
 using std::numbers::pi;
@@ -102,80 +103,6 @@ TEST(Goodman, EdgeToEdgeContactIsTheGoodmanJointElement) {
                                                           << k << "\nGoodman:\n"
                                                           << goodman;
 }
-
-/// A 1.0 m x 0.5 m block on a 45 degree ramp (a band 0.5 m thick, 8.5 m along the slope,
-/// its base held), 6.4 m up the slope so that it stays on the ramp for 1 s even at
-/// phi = 15 deg; the block's bottom face is a joint of friction angle phi. It starts at rest
-/// in the initial equilibrium (TimeStepper::equilibrate): the analytic solution assumes the
-/// full normal force from t = 0, while a block put down on unloaded springs drops into them
-/// in the first steps and slides faster meanwhile (by about 0.2% at phi = 40 deg and
-/// dt = 1e-3 s, the start error the VEM-DDA paper reports). Distances are measured from the
-/// settled position.
-struct Incline {
-  double phi_degrees = 30.0;
-  double dt = 1e-3;
-  double penalty_factor = 40.0;
-  double young = 1.0e10;
-  double penetration_tolerance = 0.0; ///< augmented Lagrange when > 0
-  ElementKind block_kind = ElementKind::nmm;
-
-  struct Result {
-    double distance = 0.0; ///< slid along the slope after 1 s
-    double exact = 0.0;
-    double max_penetration = 0.0;
-    double largest_motion = 0.0; ///< largest distance of the block's centre from its start
-    int steps = 0;
-    long cuts = 0;
-    int most_iterations = 0; ///< open-close iterations of the step that took the most
-    long augmentations = 0;
-    long coupled_tries = 0; ///< steps tried again with friction coupled in the solve
-    std::vector<std::string> warnings;
-  };
-
-  Result run(double duration = 1.0) const {
-    const Point2 along(1.0 / std::sqrt(2.0), 1.0 / std::sqrt(2.0)); // up the slope
-    const Point2 up(-1.0 / std::sqrt(2.0), 1.0 / std::sqrt(2.0));   // out of it
-    const Point2 a(4.5, 4.5);
-    MaterialRegion block{"block", {{{a, a + along, a + along + 0.5 * up, a + 0.5 * up}, {}}}};
-    const Point2 down = -0.5 * up; // the band's thickness
-    MaterialRegion ramp{"ramp", {{{{0, 0}, down, Point2(6, 6) + down, {6, 6}}, {}}}};
-    const ElasticMaterial rock = elastic(young, 0.25, 2500.0, PlaneCondition::strain);
-    testing::Setup s = testing::make_setup(
-        {ramp, block}, {line("slip", a, a + along), line("base", down, Point2(6, 6) + down)}, {0},
-        nullptr, 0.125, rock, 0, {ElementKind::nmm, block_kind});
-    Scene scene;
-    scene.supports = curve_support_points(s.model, 1, true, true, SupportMethod::exact, "base");
-    scene.body_loads.push_back({{0.0, -9.81}, {}});
-    const Point2 centre = a + 0.5 * along + 0.25 * up;
-    scene.monitors.push_back({s.model.find_element(centre, 1e-9), centre});
-    StepperOptions options;
-    options.time_step = dt;
-    const double phi = phi_degrees * pi / 180.0;
-    TimeStepper stepper(s.model, scene, options,
-                        contact_for(s.model, penalty_factor * young, {phi, 0.0, 0.0}, false,
-                                    penetration_tolerance));
-    stepper.equilibrate();
-    const Point2 start = stepper.scene().monitors[0].position;
-    Result r;
-    while (stepper.time() < duration - 1e-9) {
-      const StepReport report = stepper.step(duration);
-      r.max_penetration = std::max(r.max_penetration, stepper.contact_penetration());
-      r.largest_motion =
-          std::max(r.largest_motion, (stepper.scene().monitors[0].position - start).norm());
-      r.steps = static_cast<int>(report.step);
-      r.cuts += report.step_cuts;
-      r.most_iterations = std::max(r.most_iterations, report.open_close_iterations);
-    }
-    r.distance = -(stepper.scene().monitors[0].position - start).dot(along);
-    r.augmentations = stepper.counters().augmentations;
-    r.coupled_tries = stepper.counters().coupled_friction_tries;
-    r.warnings = stepper.warnings();
-    const double g = 9.81;
-    r.exact = std::max(0.0, 0.5 * g * duration * duration *
-                                (std::sin(pi / 4) - std::tan(phi) * std::cos(pi / 4)));
-    return r;
-  }
-};
 
 TEST(Incline, BlockSlidesTheExactDistanceForEveryFrictionAngleAndTimeStep) {
   // s = g t² (sin a - tan phi cos a) / 2 at t = 1 s on a 45 degree slope. Issue 5: relative

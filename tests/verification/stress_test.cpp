@@ -593,5 +593,35 @@ TEST(SpinningBlock, DdaBlockTurnsAHundredRevolutionsKeepingItsAreaAndAngularVelo
   EXPECT_LT(moved, 1e-7);
 }
 
+TEST(PenaltySweep,
+     StiffSpringsSlideTheExactDistanceWithCoupledFrictionWhereLoadsFromTheLastIterationCut) {
+  // Issue 8's penalty sweep at 1000 E, the part cheap enough for the sanitizer build (18 s
+  // there): the block of Incline (phi = 30 degrees, dt = 1e-2 s) for 0.1 s. With friction as
+  // loads from the last iteration's normal forces the base's edge pairs open and close in
+  // turn and 4 of its 12 steps are cut (17 of 38 in 0.3 s); tried again with friction coupled
+  // to the normal force in the solve (docs/formulation.md, "Coupled friction"), 1 of 11 with
+  // 2 coupled tries (4 of 32 in 0.3 s; measured 2026-11-29). Criteria: the closed form
+  // s = g t^2 (sin a - tan phi cos a) / 2 to 0.1% both ways (Incline's bound), coupled tries
+  // made, and at most half the cuts of the run without them: what the tries must earn.
+  testing::Incline incline;
+  incline.phi_degrees = 30.0;
+  incline.dt = 1e-2;
+  incline.penalty_factor = 1000.0;
+  const testing::Incline::Result coupled = incline.run(0.1);
+  incline.coupled_friction = false;
+  const testing::Incline::Result loads = incline.run(0.1);
+  for (const auto* r : {&coupled, &loads}) {
+    const double error = std::abs(r->distance - r->exact) / r->exact;
+    std::printf("%s: slid %.6f m, exact %.6f m, error %.4f%%, %ld cuts in %d steps, %ld coupled "
+                "tries\n",
+                r == &coupled ? "coupled friction" : "friction as loads", r->distance, r->exact,
+                100.0 * error, r->cuts, r->steps, r->coupled_tries);
+    EXPECT_LT(error, 1e-3);
+  }
+  EXPECT_GT(coupled.coupled_tries, 0);
+  EXPECT_EQ(loads.coupled_tries, 0);
+  EXPECT_LE(2 * coupled.cuts, loads.cuts);
+}
+
 } // namespace
 } // namespace nmm
