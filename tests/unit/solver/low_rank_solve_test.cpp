@@ -2,6 +2,7 @@
 #include "solver/cholmod_solver.hpp"
 #include "solver/low_rank_solve.hpp"
 
+#include "laplacian.hpp"
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
@@ -11,25 +12,6 @@
 
 namespace nmm {
 namespace {
-
-// A symmetric positive definite matrix: the 5-point Laplacian on an n x n grid plus `shift`
-// on the diagonal (upper triangle only, as the step loop hands it to its solver).
-SparseMatrix shifted_laplacian(int n, double shift) {
-  std::vector<Eigen::Triplet<double>> entries;
-  auto id = [n](int i, int j) { return i * n + j; };
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      entries.emplace_back(id(i, j), id(i, j), 4.0 + shift);
-      if (i + 1 < n)
-        entries.emplace_back(id(i, j), id(i + 1, j), -1.0);
-      if (j + 1 < n)
-        entries.emplace_back(id(i, j), id(i, j + 1), -1.0);
-    }
-  }
-  SparseMatrix a(n * n, n * n);
-  a.setFromTriplets(entries.begin(), entries.end());
-  return a;
-}
 
 // m sparse columns of `entries` pseudo-random values in [-scale, scale] each, like the
 // friction terms of m contacts (a few unknowns each).
@@ -52,7 +34,7 @@ SparseMatrix sparse_columns(Eigen::Index n, int m, int entries, double scale, un
 }
 
 struct Problem {
-  SparseMatrix a; // upper triangle
+  SparseMatrix a; // symmetric positive definite
   SparseMatrix u;
   SparseMatrix v;
   Eigen::MatrixXd full; // A + U V^T, dense
@@ -60,7 +42,7 @@ struct Problem {
 
 Problem make_problem(int m, double scale, unsigned seed) {
   Problem p;
-  p.a = shifted_laplacian(12, 0.1);
+  p.a = testing::laplacian(12, 0.1); // full storage; the solvers read its upper triangle
   p.u = sparse_columns(p.a.rows(), m, 6, scale, seed);
   p.v = sparse_columns(p.a.rows(), m, 6, scale, seed + 7u);
   const SparseMatrix whole = p.a.selfadjointView<Eigen::Upper>();
