@@ -31,12 +31,10 @@ LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
     return report;
   }
   Eigen::VectorXd residual = b;
-  if (x.size() == b.size()) {
-    const SparseMatrix& upper = a;
-    residual -= upper.selfadjointView<Eigen::Upper>() * x + u * (v.transpose() * x);
-  } else {
+  if (x.size() == b.size())
+    residual -= a.selfadjointView<Eigen::Upper>() * x + u * (v.transpose() * x);
+  else
     x.setZero(b.size());
-  }
   const double beta = residual.norm();
   report.relative_residual = beta / scale;
   if (beta <= tolerance * scale) {

@@ -50,8 +50,7 @@ struct StepperOptions {
   /// coupled to the normal force in the solve before it is cut (docs/formulation.md,
   /// "Coupled friction"; not with conjugate_gradients); false: it is cut at once.
   bool coupled_friction = true;
-  /// A try with coupled friction solves each system
-  /// by GMRES to this relative residual ...
+  /// A try with coupled friction solves each system by GMRES to this relative residual ...
   double coupled_friction_tolerance = 1e-12;
   /// ... in at most this many iterations (one solve with the factor each; fewer when there
   /// are fewer sliding contacts: GMRES ends within their number + 1), or the try is cut.
