@@ -19,7 +19,8 @@ LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
                                          const Eigen::VectorXd& b,
                                          Eigen::VectorXd& x,
                                          double tolerance,
-                                         int max_iterations) {
+                                         int max_iterations,
+                                         bool exact_solves) {
   NMM_ASSERT(u.rows() == b.size() && v.rows() == b.size() && u.cols() == v.cols(),
              "U and V are n x m for a system of n unknowns");
   NMM_ASSERT(max_iterations > 0, "GMRES needs at least one iteration");
@@ -59,12 +60,15 @@ LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
   int k = 0;
   while (k < max_iterations) {
     const auto kk = static_cast<std::size_t>(k);
-    z.emplace_back();
+    z.emplace_back(); // empty: an iterative solve starts from zero
     report.status = factor.solve(q[kk], z[kk]);
     if (report.status != SolveStatus::ok)
       return report;
-    // (A + U V^T) A^-1 q_k = q_k + U (V^T z_k).
-    w = q[kk] + u * (v.transpose() * z[kk]);
+    // (A + U V^T) A^-1 q_k = q_k + U (V^T z_k) when the solve is exact.
+    if (exact_solves)
+      w = q[kk] + u * (v.transpose() * z[kk]);
+    else
+      w = a.selfadjointView<Eigen::Upper>() * z[kk] + u * (v.transpose() * z[kk]);
     for (int i = 0; i <= k; ++i) { // modified Gram-Schmidt
       h(i, k) = q[static_cast<std::size_t>(i)].dot(w);
       w -= h(i, k) * q[static_cast<std::size_t>(i)];

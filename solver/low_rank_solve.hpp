@@ -25,8 +25,10 @@ struct LowRankSolveReport {
 /// the identity plus a term of rank m, so in exact arithmetic GMRES ends within m + 1
 /// iterations; its residual is that of the preconditioned system, as exact as the factor's
 /// solves. Stops when the residual is at most @p tolerance ||b|| or after
-/// @p max_iterations (converged false). @p factor must be a direct solver: an iterative
-/// one's inexact solves would make the residual a wrong estimate.
+/// @p max_iterations (converged false). When @p factor solves only approximately (conjugate
+/// gradients: @p exact_solves false), each iteration multiplies by A + U V^T itself instead
+/// of taking A A^-1 q = q, and the method is flexible GMRES (Saad 2003, 9.4.1): the solves
+/// may differ from iteration to iteration and the residual stays the true one.
 [[nodiscard]] LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
                                                        const SparseMatrix& a,
                                                        const SparseMatrix& u,
@@ -34,6 +36,7 @@ struct LowRankSolveReport {
                                                        const Eigen::VectorXd& b,
                                                        Eigen::VectorXd& x,
                                                        double tolerance,
-                                                       int max_iterations);
+                                                       int max_iterations,
+                                                       bool exact_solves = true);
 
 } // namespace nmm

@@ -649,9 +649,13 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       // the budget is cut as before.
       const int budget = static_cast<int>(
           std::min<Eigen::Index>(m + 10, options_.coupled_friction_iterations_max));
-      const LowRankSolveReport gmres =
-          solve_low_rank_update(*impl_->solver, a.matrix(), u, v, b, solution,
-                                options_.coupled_friction_tolerance, budget);
+      // Conjugate gradients solve to their own tolerance: GMRES can reach no better.
+      const bool exact = !options_.conjugate_gradients;
+      const double tolerance = exact ? options_.coupled_friction_tolerance
+                                     : std::max(options_.coupled_friction_tolerance,
+                                                options_.conjugate_gradients->tolerance);
+      const LowRankSolveReport gmres = solve_low_rank_update(*impl_->solver, a.matrix(), u, v, b,
+                                                             solution, tolerance, budget, exact);
       counters_.coupled_friction_iterations += gmres.iterations;
       return gmres;
     };
@@ -772,14 +776,12 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       converged = true;
       warn_penetration(impl_->contact->max_penetration(), impl_->contact->options(), true);
     }
-    if (!converged && !coupled && had_friction && !equilibrium && options_.coupled_friction &&
-        !options_.conjugate_gradients) {
+    if (!converged && !coupled && had_friction && !equilibrium && options_.coupled_friction) {
       // Friction as loads from the normal forces of the last iteration can keep the iteration
       // from converging where the contact springs are much stiffer than the bodies (the
       // pairs along a sliding block's base opening and closing in turn, iteration after
       // iteration): the step is tried again with friction coupled to the normal force in the
-      // solve, before it is cut (docs/formulation.md, "Coupled friction"; conjugate
-      // gradients have no factor to precondition its GMRES with).
+      // solve, before it is cut (docs/formulation.md, "Coupled friction").
       coupled = true;
       ++counters_.coupled_friction_tries;
       continue;

@@ -48,7 +48,7 @@ struct StepperOptions {
   /// A step whose open-close iteration does not converge with friction as loads from the
   /// last iteration, with a sliding contact that has friction, is tried again with friction
   /// coupled to the normal force in the solve before it is cut (docs/formulation.md,
-  /// "Coupled friction"; not with conjugate_gradients); false: it is cut at once.
+  /// "Coupled friction"); false: it is cut at once.
   bool coupled_friction = true;
   /// A try with coupled friction solves each system by GMRES to this relative residual ...
   double coupled_friction_tolerance = 1e-12;
