@@ -80,6 +80,55 @@ bool reduce(const DofMap& map, std::span<const int> raw, std::vector<int>& flat,
   return false;
 }
 
+/// The coupled friction of the contacts (ContactSystem::FrictionCoupling) in the reduced
+/// unknowns: for contact j, column j of U is -coef w and of V is a (an unsymmetric term
+/// U V^T of the step matrix), and the load coef (c0 + a . t0) w is added to @p rhs.
+/// @p point_dofs(i) gives contact point i's raw unknowns, @p transform_of[i] its reduction
+/// in @p transforms (-1: its unknowns are all free).
+template <class PointDofs>
+std::pair<SparseMatrix, SparseMatrix>
+reduce_coupling(const std::vector<ContactSystem::FrictionCoupling>& terms,
+                const DofMap& map,
+                const PointDofs& point_dofs,
+                const std::vector<int>& transform_of,
+                const std::vector<Reduction>& transforms,
+                Eigen::VectorXd& rhs) {
+  std::vector<Eigen::Triplet<double>> u_entries;
+  std::vector<Eigen::Triplet<double>> v_entries;
+  auto add = [&](int column, int unknown, double along, double normal, double load) {
+    u_entries.emplace_back(unknown, column, along);
+    v_entries.emplace_back(unknown, column, normal);
+    rhs(unknown) += load * along;
+  };
+  for (std::size_t j = 0; j < terms.size(); ++j) {
+    const ContactSystem::FrictionCoupling& term = terms[j];
+    const auto column = static_cast<int>(j);
+    const int transform = transform_of[at(term.point)];
+    if (transform < 0) {
+      const std::span<const int> dofs = point_dofs(term.point);
+      for (std::size_t l = 0; l < dofs.size(); ++l) {
+        const auto i = static_cast<Eigen::Index>(l);
+        add(column, map.reduced(dofs[l]), -term.coef * term.w(i), term.a(i), -term.c0);
+      }
+      continue;
+    }
+    const Reduction& r = transforms[at(transform)];
+    const Eigen::VectorXd w = r.transform.transpose() * term.w;
+    const Eigen::VectorXd gradient = r.transform.transpose() * term.a;
+    const double c0 = term.c0 + term.a.dot(r.constant);
+    for (std::size_t l = 0; l < r.reduced.size(); ++l) {
+      const auto i = static_cast<Eigen::Index>(l);
+      add(column, r.reduced[l], -term.coef * w(i), gradient(i), -c0);
+    }
+  }
+  const auto n = static_cast<Eigen::Index>(map.n_reduced());
+  const auto m = static_cast<Eigen::Index>(terms.size());
+  std::pair<SparseMatrix, SparseMatrix> uv{SparseMatrix(n, m), SparseMatrix(n, m)};
+  uv.first.setFromTriplets(u_entries.begin(), u_entries.end());
+  uv.second.setFromTriplets(v_entries.begin(), v_entries.end());
+  return uv;
+}
+
 /// Why the step matrix cannot be factorised, naming the body whose unknowns are free.
 std::string
 singular_message(const Model& model, const DofMap& map, long column, SolveStatus status) {
@@ -597,10 +646,9 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         }
       }
     }
-    // A solve with coupled friction: each sliding contact's friction as the term -coef w a^T
-    // of rank one and the load coef (c0 + a . t0) w in the reduced unknowns
-    // (ContactSystem::FrictionCoupling; t0: the constant of the expansion of its unknowns),
-    // solved by GMRES preconditioned with the factor of the symmetric matrix.
+    // A solve with coupled friction: the sliding contacts' terms of rank one and loads in the
+    // reduced unknowns (reduce_coupling()), solved by GMRES preconditioned with the factor of
+    // the symmetric matrix.
     auto solve_coupled = [&](const Eigen::VectorXd& rhs, Eigen::VectorXd& solution) {
       const std::vector<ContactSystem::FrictionCoupling> terms =
           impl_->contact->friction_coupling(model_);
@@ -610,41 +658,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
         direct.converged = true;
         return direct;
       }
-      std::vector<Eigen::Triplet<double>> u_entries;
-      std::vector<Eigen::Triplet<double>> v_entries;
       Eigen::VectorXd b = rhs;
-      auto add = [&](int column, int unknown, double along, double normal, double load) {
-        u_entries.emplace_back(unknown, column, along);
-        v_entries.emplace_back(unknown, column, normal);
-        b(unknown) += load * along;
-      };
-      for (std::size_t j = 0; j < terms.size(); ++j) {
-        const ContactSystem::FrictionCoupling& term = terms[j];
-        const auto column = static_cast<int>(j);
-        const int transform = contact_transform[at(term.point)];
-        if (transform < 0) {
-          const std::span<const int> dofs = contact_point_dofs(term.point);
-          for (std::size_t l = 0; l < dofs.size(); ++l) {
-            const auto i = static_cast<Eigen::Index>(l);
-            add(column, map.reduced(dofs[l]), -term.coef * term.w(i), term.a(i), -term.c0);
-          }
-          continue;
-        }
-        const Reduction& r = transforms[at(transform)];
-        const Eigen::VectorXd w = r.transform.transpose() * term.w;
-        const Eigen::VectorXd gradient = r.transform.transpose() * term.a;
-        const double c0 = term.c0 + term.a.dot(r.constant);
-        for (std::size_t l = 0; l < r.reduced.size(); ++l) {
-          const auto i = static_cast<Eigen::Index>(l);
-          add(column, r.reduced[l], -term.coef * w(i), gradient(i), -c0);
-        }
-      }
-      const auto n = static_cast<Eigen::Index>(map.n_reduced());
-      const auto m = static_cast<Eigen::Index>(terms.size());
-      SparseMatrix u(n, m);
-      SparseMatrix v(n, m);
-      u.setFromTriplets(u_entries.begin(), u_entries.end());
-      v.setFromTriplets(v_entries.begin(), v_entries.end());
+      const auto [u, v] =
+          reduce_coupling(terms, map, contact_point_dofs, contact_transform, transforms, b);
+      const Eigen::Index m = u.cols();
       // GMRES ends within m + 1 iterations but for the rounding; a try that needs more than
       // the budget is cut as before.
       const int budget = static_cast<int>(
