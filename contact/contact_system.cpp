@@ -659,34 +659,105 @@ void ContactSystem::kinematics(const Model& model,
   const std::span<const int> master_dofs = model.element_dofs(master_element);
   const ElementShape& slave_shape = shape(slave_element);
   const ElementShape& master_shape = shape(master_element);
+  const Point2& slave_a = boundary_.position[at(slave_edge)];
+  const Point2& slave_b = boundary_.position[at(boundary_.next[at(slave_edge)])];
+  const Point2& a = boundary_.position[at(master)];
+  const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
+  const double l = (b - a).norm();
+  const Point2 tangent = (b - a) / l;
+  const Point2 normal = perp(b - a) / l;
+  // The terms T_element(x)^T c of the gap (hn) and of the shear (hs), on the slave's unknowns
+  // (x on the slave edge's line) or the master's (x on the master edge's line).
+  // Normal gap (material on the left of a -> b; positive on the void side):
+  // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
+  // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
+  k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset - p.shift;
+  struct Term {
+    Point2 x;
+    Point2 c;
+  };
+  std::array<Term, 5> master_normal{};
+  std::size_t n_master_normal = 0;
+  master_normal[n_master_normal++] = {a, perp(slave - b) / l};
+  master_normal[n_master_normal++] = {b, Point2(-perp(slave - a) / l)};
+  if (model.order >= 1 && master_shape.nmm() != nullptr) {
+    // The master terms above move the foot of the slave point, A + t (B - A), with the
+    // straight line through the moved ends A and B: exact for a straight edge (order 0, DDA,
+    // VEM). An order-1 edge bends (its displacement is quadratic along it); the foot moves
+    // with the master's own field there: n . (T(foot) - (1 - t) T(A) - t T(B)) d less gap.
+    const double foot = (slave - a).dot(b - a) / (l * l);
+    master_normal[n_master_normal++] = {a + foot * (b - a), Point2(-normal)};
+    master_normal[n_master_normal++] = {a, (1.0 - foot) * normal};
+    master_normal[n_master_normal++] = {b, foot * normal};
+  }
+  // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
+  const Point2 anchor = a + p.anchor * (b - a);
+  k.s0 = (slave - anchor).dot(tangent);
+  const Term master_shear{anchor, Point2(-tangent)};
+  PointInterpolation& t = work.t;
+  std::vector<int>& columns = work.columns;
+  k.dofs.clear();
   // The unknowns the point's terms involve, each at the position of its first use: the
   // slave element's first (all of an NMM element's or a DDA block's, a VEM block's slave
   // edge's two vertices), then the master's that the slave does not have. They depend on
   // the point's edges only, not on where it sits along them: the step's sparsity pattern
-  // and plans are made with them at its start (point_dofs()). Where each of the elements'
-  // unknowns sits is found once: local[c] for the slave's column c, local[slave size + c]
-  // for the master's (-1: not used yet).
+  // and plans are made with them at its start (point_dofs()).
+  //
+  // Two elements whose unknowns are apart (two blocks; NMM elements on either side of a
+  // joint, mostly): the master's follow the slave's, in the order of the columns of their
+  // interpolations, which are those of the edge for every point on its line. An element's
+  // own unknowns are distinct. The same sums in the same order as below (from a zero, as
+  // there), without looking up any unknown: the 70-block wall's kinematics take 0.11 ms a
+  // step instead of 0.19.
+  const auto [slave_min, slave_max] = std::ranges::minmax(slave_dofs);
+  const auto [master_min, master_max] = std::ranges::minmax(master_dofs);
+  if (slave_max < master_min || master_max < slave_min) {
+    slave_shape.interpolation_on_edge(slave, slave_a, slave_b, t, columns);
+    const auto ns = static_cast<Eigen::Index>(columns.size());
+    for (const int column : columns)
+      k.dofs.push_back(slave_dofs[at(column)]);
+    std::vector<int>& master_columns = work.master_columns;
+    master_shape.interpolation_on_edge(a, a, b, work.t_master, master_columns);
+    const auto nm = static_cast<Eigen::Index>(master_columns.size());
+    for (const int column : master_columns)
+      k.dofs.push_back(master_dofs[at(column)]);
+    k.hn.resize(ns + nm);
+    k.hs.resize(ns + nm);
+    for (Eigen::Index j = 0; j < ns; ++j) {
+      k.hn(j) = 0.0 + (t(0, j) * normal.x() + t(1, j) * normal.y());
+      k.hs(j) = 0.0 + (t(0, j) * tangent.x() + t(1, j) * tangent.y());
+    }
+    auto add_master = [&](Eigen::Ref<Eigen::VectorXd> h, const Term& term, bool first) {
+      if (!first)
+        master_shape.interpolation_on_edge(term.x, a, b, work.t_master, columns);
+      NMM_ASSERT(first || columns == master_columns,
+                 "every point on an edge's line has the edge's columns");
+      const PointInterpolation& tm = work.t_master;
+      for (Eigen::Index j = 0; j < nm; ++j)
+        h(j) += tm(0, j) * term.c.x() + tm(1, j) * term.c.y();
+    };
+    k.hn.tail(nm).setZero();
+    k.hs.tail(nm).setZero();
+    for (std::size_t q = 0; q < n_master_normal; ++q)
+      add_master(k.hn.tail(nm), master_normal[q], q == 0);
+    add_master(k.hs.tail(nm), master_shear, false);
+    return;
+  }
+  // Otherwise each unknown is looked up where it is first used: local[c] for the slave's
+  // column c, local[slave size + c] for the master's (-1: not used yet).
   const std::size_t bound = slave_dofs.size() + master_dofs.size();
-  k.dofs.clear();
   std::vector<double>& hn = work.hn;
   std::vector<double>& hs = work.hs;
   hn.assign(bound, 0.0);
   hs.assign(bound, 0.0);
   std::vector<Eigen::Index>& local = work.local;
   local.assign(bound, -1);
-  PointInterpolation& t = work.t;
-  std::vector<int>& columns = work.columns;
-  const Point2& slave_a = boundary_.position[at(slave_edge)];
-  const Point2& slave_b = boundary_.position[at(boundary_.next[at(slave_edge)])];
-  const Point2& a = boundary_.position[at(master)];
-  const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
-  // Adds T_element(x)^T c to hn (or hs if @p shear), on the slave's unknowns (x on the slave
-  // edge's line) or the master's (x on the master edge's line).
-  auto add = [&](bool shear, bool on_master, const Point2& x, const Point2& c) {
+  // Adds T_element(x)^T c to hn (or hs if @p shear), on the slave's unknowns or the master's.
+  auto add = [&](bool shear, bool on_master, const Term& term) {
     if (on_master)
-      master_shape.interpolation_on_edge(x, a, b, t, columns);
+      master_shape.interpolation_on_edge(term.x, a, b, t, columns);
     else
-      slave_shape.interpolation_on_edge(x, slave_a, slave_b, t, columns);
+      slave_shape.interpolation_on_edge(term.x, slave_a, slave_b, t, columns);
     const std::span<const int> dofs = on_master ? master_dofs : slave_dofs;
     const std::size_t offset = on_master ? slave_dofs.size() : 0;
     std::vector<double>& h = shear ? hs : hn;
@@ -701,34 +772,14 @@ void ContactSystem::kinematics(const Model& model,
           k.dofs.push_back(dofs[column]);
       }
       const auto col = static_cast<Eigen::Index>(j);
-      h[static_cast<std::size_t>(position)] += t(0, col) * c.x() + t(1, col) * c.y();
+      h[static_cast<std::size_t>(position)] += t(0, col) * term.c.x() + t(1, col) * term.c.y();
     }
   };
-  const double l = (b - a).norm();
-  const Point2 tangent = (b - a) / l;
-  // Normal gap (material on the left of a -> b; positive on the void side):
-  // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
-  // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
-  k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset - p.shift;
-  add(false, false, slave, perp(b - a) / l);
-  add(false, true, a, perp(slave - b) / l);
-  add(false, true, b, Point2(-perp(slave - a) / l));
-  if (model.order >= 1 && master_shape.nmm() != nullptr) {
-    // The master terms above move the foot of the slave point, A + t (B - A), with the
-    // straight line through the moved ends A and B: exact for a straight edge (order 0, DDA,
-    // VEM). An order-1 edge bends (its displacement is quadratic along it); the foot moves
-    // with the master's own field there: n . (T(foot) - (1 - t) T(A) - t T(B)) d less gap.
-    const double foot = (slave - a).dot(b - a) / (l * l);
-    const Point2 normal = perp(b - a) / l;
-    add(false, true, a + foot * (b - a), Point2(-normal));
-    add(false, true, a, (1.0 - foot) * normal);
-    add(false, true, b, foot * normal);
-  }
-  // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
-  const Point2 anchor = a + p.anchor * (b - a);
-  k.s0 = (slave - anchor).dot(tangent);
-  add(true, false, slave, tangent);
-  add(true, true, anchor, Point2(-tangent));
+  add(false, false, {slave, normal});
+  for (std::size_t q = 0; q < n_master_normal; ++q)
+    add(false, true, master_normal[q]);
+  add(true, false, {slave, tangent});
+  add(true, true, master_shear);
   // Cut to the unknowns used (fewer than bound on a VEM block's edge, or where the elements
   // share unknowns).
   const auto n = static_cast<Eigen::Index>(k.dofs.size());

@@ -430,6 +430,8 @@ private:
     std::vector<Eigen::Index> local;
     std::vector<int> columns;
     PointInterpolation t;
+    PointInterpolation t_master;
+    std::vector<int> master_columns;
     std::vector<double> hn;
     std::vector<double> hs;
   };
