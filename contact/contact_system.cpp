@@ -29,13 +29,15 @@ JointStrength weaker(const JointStrength& a, const JointStrength& b) {
 bool closed(ContactMode m) { return m != ContactMode::open; }
 
 /// m += (s h) h^T, entry (a, b) as (s h(a)) h(b): what Eigen's outer product computes, without
-/// its temporary for s h (an allocation for every spring in every open-close iteration).
-void add_outer(Eigen::MatrixXd& m, double s, const Eigen::VectorXd& h) {
+/// its temporary for s h (an allocation for every spring in every open-close iteration); only
+/// the upper triangle (a <= b) when @p upper.
+void add_outer(Eigen::MatrixXd& m, double s, const Eigen::VectorXd& h, bool upper) {
   const Eigen::Index n = h.size();
   for (Eigen::Index b = 0; b < n; ++b) {
     const double hb = h(b);
     double* column = m.col(b).data();
-    for (Eigen::Index a = 0; a < n; ++a)
+    const Eigen::Index rows = upper ? b + 1 : n;
+    for (Eigen::Index a = 0; a < rows; ++a)
       column[a] += (s * h(a)) * hb;
   }
 }
@@ -930,7 +932,8 @@ void ContactSystem::append_point_dofs(const Model& model, int i, std::vector<int
 bool ContactSystem::contribution(const Model& model,
                                  int i,
                                  Eigen::MatrixXd* stiffness,
-                                 Eigen::VectorXd& load) const {
+                                 Eigen::VectorXd& load,
+                                 bool upper) const {
   const ContactPoint& p = points_[at(i)];
   // One kinematics: its unknowns are point_dofs(i), in that order.
   const Kinematics& k = cached_kinematics(model, p, at(i));
@@ -944,12 +947,12 @@ bool ContactSystem::contribution(const Model& model,
   const Eigen::VectorXd& hs = k.hs;
   // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
   if (stiffness != nullptr)
-    add_outer(*stiffness, p.stiffness, hn);
+    add_outer(*stiffness, p.stiffness, hn, upper);
   load -= p.stiffness * k.g0 * hn;
   if (p.mode == ContactMode::lock) {
     // Shear spring (eq. 3.25-3.26) anchored at P0.
     if (stiffness != nullptr)
-      add_outer(*stiffness, p.stiffness, hs);
+      add_outer(*stiffness, p.stiffness, hs, upper);
     load -= p.stiffness * k.s0 * hs;
   } else if (friction_coupled(p)) {
     return true; // its friction is in the solve: friction_coupling()

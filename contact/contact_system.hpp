@@ -220,9 +220,14 @@ public:
 
   /// Springs and friction loads of point i in its current mode, on point_dofs(i); the loads
   /// only when @p stiffness is null (an iteration that keeps the factor: friction changed).
+  /// With @p upper, only the upper triangle of the springs' matrix (the rest is zero): what an
+  /// Assembler reads.
   /// @return whether a friction load was assembled (friction_force() of the point is not 0).
-  bool
-  contribution(const Model& model, int i, Eigen::MatrixXd* stiffness, Eigen::VectorXd& load) const;
+  bool contribution(const Model& model,
+                    int i,
+                    Eigen::MatrixXd* stiffness,
+                    Eigen::VectorXd& load,
+                    bool upper = false) const;
 
   /// After a solve with step displacement @p raw: new modes by Shi's mode table, new lift-off
   /// points and new friction loads.

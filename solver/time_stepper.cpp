@@ -690,7 +690,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           const ContactPoint& point = impl_->contact->points()[at(i)];
           if (point.mode == ContactMode::open)
             continue; // no spring, no load
-          if (impl_->contact->contribution(model_, i, assemble ? &spring : nullptr, load)) {
+          // The upper triangle is what the assembler reads; a transform to the reduced
+          // unknowns needs the whole matrix.
+          const bool upper = contact_transform[at(i)] < 0;
+          if (impl_->contact->contribution(model_, i, assemble ? &spring : nullptr, load, upper)) {
             ++counters_.friction_terms;
             had_friction = true;
           }
