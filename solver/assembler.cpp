@@ -97,18 +97,35 @@ int Assembler::plan(std::span<const int> dofs) {
 }
 
 int Assembler::plan_if_in_pattern(std::span<const int> dofs) {
-  Plan plan;
-  plan.n_local = static_cast<int>(dofs.size());
-  plan.kept_begin = kept_local_.size();
+  scratch_local_.clear();
+  scratch_dofs_.clear();
   for (std::size_t a = 0; a < dofs.size(); ++a) {
     NMM_ASSERT(dofs[a] < n_dofs(), "dof index out of range");
     if (dofs[a] >= 0) {
-      kept_local_.push_back(static_cast<int>(a));
-      kept_dofs_.push_back(dofs[a]);
+      scratch_local_.push_back(static_cast<int>(a));
+      scratch_dofs_.push_back(dofs[a]);
     }
   }
-  const int m = static_cast<int>(kept_local_.size() - plan.kept_begin);
+  const int n_local = static_cast<int>(dofs.size());
+  const int m = static_cast<int>(scratch_local_.size());
+  // The positions of a plan for the same dofs, if there was one.
+  const std::uint64_t key = plan_key(n_local, scratch_local_.data(), scratch_dofs_.data(), m);
+  const int known = index_.find(key);
+  if (known != KeyIndex::none) {
+    const Plan& plan = known_[static_cast<std::size_t>(known)];
+    if (has_pairs(plan, kept_local_, kept_dofs_, n_local, scratch_local_.data(),
+                  scratch_dofs_.data(), m)) {
+      plans_.push_back(plan);
+      return static_cast<int>(plans_.size()) - 1;
+    }
+  }
+  ++searches_;
+  Plan plan;
+  plan.n_local = n_local;
   plan.n_kept = m;
+  plan.kept_begin = kept_local_.size();
+  kept_local_.insert(kept_local_.end(), scratch_local_.begin(), scratch_local_.end());
+  kept_dofs_.insert(kept_dofs_.end(), scratch_dofs_.begin(), scratch_dofs_.end());
   plan.position_begin = positions_.size();
   plan.repeat_begin = repeats_.size();
   const int* kept = kept_local_.data() + plan.kept_begin;
@@ -148,11 +165,44 @@ int Assembler::plan_if_in_pattern(std::span<const int> dofs) {
     }
   }
   plan.repeat_end = repeats_.size();
-  plan.kept_size = kept_local_.size();
-  plan.positions_size = positions_.size();
-  plan.repeats_size = repeats_.size();
+  if (known == KeyIndex::none) { // (another set of dofs with the same key keeps it)
+    index_.insert(key, static_cast<int>(known_.size()));
+    known_.push_back(plan);
+  }
   plans_.push_back(plan);
   return static_cast<int>(plans_.size()) - 1;
+}
+
+std::uint64_t Assembler::plan_key(int n_local, const int* kept, const int* dofs, int m) {
+  // splitmix64's finaliser over the size and the pairs, one after the other.
+  auto mix = [](std::uint64_t x) {
+    x ^= x >> 30U;
+    x *= 0xbf58476d1ce4e5b9ULL;
+    x ^= x >> 27U;
+    x *= 0x94d049bb133111ebULL;
+    x ^= x >> 31U;
+    return x;
+  };
+  std::uint64_t key = mix(static_cast<std::uint64_t>(static_cast<std::uint32_t>(n_local)));
+  for (int q = 0; q < m; ++q) {
+    const auto pair = static_cast<std::uint64_t>(static_cast<std::uint32_t>(kept[q])) << 32U |
+                      static_cast<std::uint32_t>(dofs[q]);
+    key = mix(key ^ pair);
+  }
+  return key == ~std::uint64_t{0} ? 0 : key; // all bits set: KeyIndex's empty slot
+}
+
+bool Assembler::has_pairs(const Plan& plan,
+                          const std::vector<int>& kept_local,
+                          const std::vector<int>& kept_dofs,
+                          int n_local,
+                          const int* kept,
+                          const int* dofs,
+                          int m) {
+  const auto begin = static_cast<std::ptrdiff_t>(plan.kept_begin);
+  return plan.n_local == n_local && plan.n_kept == m &&
+         std::equal(kept, kept + m, kept_local.begin() + begin) &&
+         std::equal(dofs, dofs + m, kept_dofs.begin() + begin);
 }
 
 void Assembler::add(int plan_id, const Eigen::Ref<const Eigen::MatrixXd>& local) {
@@ -197,31 +247,61 @@ void Assembler::add_vector(int plan_id, const Eigen::Ref<const Eigen::VectorXd>&
 
 int Assembler::plan_as(int plan_id) {
   NMM_ASSERT(plan_id >= 0 && plan_id < n_plans(), "no such plan to share");
-  Plan plan = plans_[static_cast<std::size_t>(plan_id)];
-  plan.kept_size = kept_local_.size();
-  plan.positions_size = positions_.size();
-  plan.repeats_size = repeats_.size();
-  plans_.push_back(plan);
+  plans_.push_back(plans_[static_cast<std::size_t>(plan_id)]);
   return static_cast<int>(plans_.size()) - 1;
 }
 
 void Assembler::truncate_plans(int first) {
   NMM_ASSERT(first >= 0 && first <= n_plans(), "no such plan");
-  if (first == n_plans())
-    return;
-  if (first == 0) {
-    kept_local_.clear();
-    kept_dofs_.clear();
-    positions_.clear();
-    repeats_.clear();
-  } else {
-    const Plan& last = plans_[static_cast<std::size_t>(first) - 1];
-    kept_local_.resize(last.kept_size);
-    kept_dofs_.resize(last.kept_size);
-    positions_.resize(last.positions_size);
-    repeats_.resize(last.repeats_size);
-  }
+  if (known_.size() > 2 * plans_.size() + 1024)
+    compact();
   plans_.resize(static_cast<std::size_t>(first));
+}
+
+void Assembler::compact() {
+  std::vector<int> kept_local;
+  std::vector<int> kept_dofs;
+  std::vector<int> positions;
+  std::vector<Repeat> repeats;
+  std::vector<Plan> known;
+  KeyIndex index(plans_.size());
+  for (Plan& plan : plans_) {
+    const auto kept = static_cast<std::ptrdiff_t>(plan.kept_begin);
+    const int* local = kept_local_.data() + kept;
+    const int* dofs = kept_dofs_.data() + kept;
+    const std::uint64_t key = plan_key(plan.n_local, local, dofs, plan.n_kept);
+    const int found = index.find(key);
+    if (found != KeyIndex::none) {
+      const Plan& moved = known[static_cast<std::size_t>(found)];
+      if (has_pairs(moved, kept_local, kept_dofs, plan.n_local, local, dofs, plan.n_kept)) {
+        plan = moved;
+        continue;
+      }
+    }
+    Plan copy = plan;
+    copy.kept_begin = kept_local.size();
+    kept_local.insert(kept_local.end(), local, local + plan.n_kept);
+    kept_dofs.insert(kept_dofs.end(), dofs, dofs + plan.n_kept);
+    copy.position_begin = positions.size();
+    const auto first = positions_.begin() + static_cast<std::ptrdiff_t>(plan.position_begin);
+    positions.insert(positions.end(), first,
+                     first + static_cast<std::ptrdiff_t>(plan.n_kept) * (plan.n_kept + 1) / 2);
+    copy.repeat_begin = repeats.size();
+    repeats.insert(repeats.end(), repeats_.begin() + static_cast<std::ptrdiff_t>(plan.repeat_begin),
+                   repeats_.begin() + static_cast<std::ptrdiff_t>(plan.repeat_end));
+    copy.repeat_end = repeats.size();
+    if (found == KeyIndex::none) {
+      index.insert(key, static_cast<int>(known.size()));
+      known.push_back(copy);
+    }
+    plan = copy;
+  }
+  kept_local_.swap(kept_local);
+  kept_dofs_.swap(kept_dofs);
+  positions_.swap(positions);
+  repeats_.swap(repeats);
+  known_.swap(known);
+  std::swap(index_, index);
 }
 
 void Assembler::drop_data_from(const Plan& plan) {
@@ -231,6 +311,14 @@ void Assembler::drop_data_from(const Plan& plan) {
   repeats_.resize(plan.repeat_begin);
 }
 
-void Assembler::clear_plans() { truncate_plans(0); }
+void Assembler::clear_plans() {
+  plans_.clear();
+  kept_local_.clear();
+  kept_dofs_.clear();
+  positions_.clear();
+  repeats_.clear();
+  known_.clear();
+  index_.clear();
+}
 
 } // namespace nmm
