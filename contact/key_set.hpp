@@ -90,12 +90,9 @@ public:
   /// Whether a long probe has turned the table to the scattering hash.
   [[nodiscard]] bool scattered() const noexcept { return scattered_; }
 
-private:
-  static constexpr std::uint64_t empty = ~std::uint64_t{0};
-  static constexpr std::size_t max_local_probes = 64;
-
-  /// splitmix64's finaliser.
-  static std::uint64_t hash(std::uint64_t key) noexcept {
+  /// splitmix64's finaliser: the table's scattering hash, and a mix for keys made of several
+  /// values (Assembler's plans).
+  [[nodiscard]] static std::uint64_t hash(std::uint64_t key) noexcept {
     key ^= key >> 30U;
     key *= 0xbf58476d1ce4e5b9ULL;
     key ^= key >> 27U;
@@ -103,6 +100,10 @@ private:
     key ^= key >> 31U;
     return key;
   }
+
+private:
+  static constexpr std::uint64_t empty = ~std::uint64_t{0};
+  static constexpr std::size_t max_local_probes = 64;
 
   /// Where the probe for @p key starts (see the class comment).
   [[nodiscard]] std::size_t home(std::uint64_t key) const noexcept {

@@ -175,14 +175,7 @@ int Assembler::plan_if_in_pattern(std::span<const int> dofs) {
 
 std::uint64_t Assembler::plan_key(int n_local, const int* kept, const int* dofs, int m) {
   // splitmix64's finaliser over the size and the pairs, one after the other.
-  auto mix = [](std::uint64_t x) {
-    x ^= x >> 30U;
-    x *= 0xbf58476d1ce4e5b9ULL;
-    x ^= x >> 27U;
-    x *= 0x94d049bb133111ebULL;
-    x ^= x >> 31U;
-    return x;
-  };
+  auto mix = [](std::uint64_t x) { return KeyIndex::hash(x); };
   std::uint64_t key = mix(static_cast<std::uint64_t>(static_cast<std::uint32_t>(n_local)));
   for (int q = 0; q < m; ++q) {
     const auto pair = static_cast<std::uint64_t>(static_cast<std::uint32_t>(kept[q])) << 32U |
