@@ -74,6 +74,16 @@ TEST(Goodman, EdgeToEdgeContactIsTheGoodmanJointElement) {
     Eigen::MatrixXd spring;
     Eigen::VectorXd load;
     contact->contribution(s.model, i, &spring, load);
+    // What the time stepper asks for where no transform needs the whole matrix: the upper
+    // triangle alone, its entries the same to the bit, nothing below the diagonal.
+    Eigen::MatrixXd upper;
+    Eigen::VectorXd upper_load;
+    contact->contribution(s.model, i, &upper, upper_load, true);
+    const Eigen::MatrixXd full_upper = spring.triangularView<Eigen::Upper>();
+    const Eigen::MatrixXd upper_only = upper.triangularView<Eigen::Upper>();
+    EXPECT_EQ(upper_only, full_upper);
+    EXPECT_EQ(Eigen::MatrixXd(upper.triangularView<Eigen::StrictlyLower>()).norm(), 0.0);
+    EXPECT_EQ(upper_load, load);
     const std::vector<int> dofs = contact->point_dofs(s.model, i);
     for (std::size_t a = 0; a < dofs.size(); ++a) {
       for (std::size_t b = 0; b < dofs.size(); ++b) {
