@@ -551,9 +551,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     } else {
       lead.anchor = anchor_of(0.0, lead.slave);
     }
-    double total = 0.0;
-    for (int q = 0; q < g.count; ++q)
-      total += points_[at(g.first + q)].stiffness;
+    const double total = group_stiffness(g);
     for (int q = 0; q < g.count; ++q) {
       ContactPoint& point = points_[at(g.first + q)];
       point.mode = mode;
@@ -965,6 +963,13 @@ bool ContactSystem::contribution(const Model& model,
   return false;
 }
 
+double ContactSystem::group_stiffness(const Group& g) const {
+  double sum = 0.0;
+  for (int q = 0; q < g.count; ++q)
+    sum += points_[at(g.first + q)].stiffness;
+  return sum;
+}
+
 std::vector<ContactSystem::FrictionCoupling>
 ContactSystem::friction_coupling(const Model& model) const {
   std::vector<FrictionCoupling> coupling;
@@ -972,9 +977,7 @@ ContactSystem::friction_coupling(const Model& model) const {
     const ContactPoint& lead = points_[at(g.first)];
     if (!friction_coupled(lead))
       continue;
-    double placed = 0.0;
-    for (int q = 0; q < g.count; ++q)
-      placed += points_[at(g.first + q)].stiffness;
+    const double placed = group_stiffness(g);
     FrictionCoupling f;
     f.point = g.first;
     f.coef = static_cast<double>(lead.slide_sign) * std::tan(lead.strength.friction_angle);
@@ -1233,9 +1236,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       return sum;
     }();
     const double now = closed(after) && closed(before) ? bearing : 0.0;
-    double placed = 0.0;
-    for (int q = 0; q < g.count; ++q)
-      placed += points_[at(g.first + q)].stiffness;
+    const double placed = group_stiffness(g);
     // The shear force on the master along its edge (first vertex to next): the spring's pull,
     // or friction's, which opposes the slave's sliding (sign) and so pulls the master along.
     for (int q = 0; q < g.count; ++q) {
@@ -1358,9 +1359,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         p.shift = offset_at(shifts, p.u);
       }
     }
-    double placed = 0.0;
-    for (int q = 0; q < g.count; ++q)
-      placed += points_[at(g.first + q)].stiffness;
+    const double placed = group_stiffness(g);
     for (int q = 0; q < g.count; ++q) {
       ContactPoint& p = points_[at(g.first + q)];
       p.normal_force = placed > 0.0 ? normal * p.stiffness / placed : 0.0;

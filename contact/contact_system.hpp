@@ -543,6 +543,9 @@ private:
   FrictionHolds holds_; ///< holds()
   bool dynamic_ = false;
   bool coupled_friction_ = false; ///< set_coupled_friction()
+  /// The stiffness of group @p g's springs: the sum over its points, in order (the shares
+  /// of its normal force and friction are by it).
+  [[nodiscard]] double group_stiffness(const Group& g) const;
   /// Whether point @p p's friction is coupled in the solve (set_coupled_friction()).
   [[nodiscard]] bool friction_coupled(const ContactPoint& p) const noexcept {
     return coupled_friction_ && p.mode == ContactMode::slide && p.strength.friction_angle > 0.0;
