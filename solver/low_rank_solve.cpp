@@ -31,9 +31,13 @@ LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
     report.converged = true;
     return report;
   }
+  // (A + U V^T) y, A stored as its upper triangle.
+  auto times_system = [&](const Eigen::VectorXd& y) -> Eigen::VectorXd {
+    return a.selfadjointView<Eigen::Upper>() * y + u * (v.transpose() * y);
+  };
   Eigen::VectorXd residual = b;
   if (x.size() == b.size())
-    residual -= a.selfadjointView<Eigen::Upper>() * x + u * (v.transpose() * x);
+    residual -= times_system(x);
   else
     x.setZero(b.size());
   const double beta = residual.norm();
@@ -68,7 +72,7 @@ LowRankSolveReport solve_low_rank_update(LinearSolver& factor,
     if (exact_solves)
       w = q[kk] + u * (v.transpose() * z[kk]);
     else
-      w = a.selfadjointView<Eigen::Upper>() * z[kk] + u * (v.transpose() * z[kk]);
+      w = times_system(z[kk]);
     for (int i = 0; i <= k; ++i) { // modified Gram-Schmidt
       h(i, k) = q[static_cast<std::size_t>(i)].dot(w);
       w -= h(i, k) * q[static_cast<std::size_t>(i)];
