@@ -110,6 +110,79 @@ TEST(PcgSolver, AProductOnTwoThreadsGivesTheSameSolutionToTheBit) {
   EXPECT_LT((x - expected).norm(), 1e-8 * expected.norm()); // tolerance 1e-10, condition ~80
 }
 
+TEST(PcgSolver, SolvesAMatrixWithScatteredEntriesAsCholmodDoes) {
+  // Blocks of 1 to 12 unknowns (the product's fixed-size paths for 2 and 6 and the general
+  // one) coupled by single entries far apart, so that a column's entries above the diagonal
+  // form runs of every length from 1 on, with gaps between them. A diagonal of 12 against
+  // couplings of at most 0.5 with at most 6 a row: diagonally dominant, condition < 2.
+  std::vector<Eigen::Triplet<double>> entries;
+  int n = 0;
+  std::vector<int> first;
+  for (int b = 0; b < 60; ++b) {
+    const int size = 1 + (b * 7) % 12;
+    first.push_back(n);
+    for (int i = 0; i < size; ++i) {
+      for (int j = 0; j < size; ++j)
+        entries.emplace_back(n + i, n + j, i == j ? 12.0 : 0.01 * (i + j + 1));
+    }
+    n += size;
+  }
+  for (int b = 0; b + 5 < 60; ++b) { // block b's first unknowns with parts of block b + 5
+    const int far = first[static_cast<std::size_t>(b) + 5];
+    for (int k = 0; k < 3; ++k) {
+      const int r = first[static_cast<std::size_t>(b)];
+      const int c = far + k * k; // rows 0, 1 and 4 of the far block: runs with a gap
+      if (c >= (b + 6 < 60 ? first[static_cast<std::size_t>(b) + 6] : n))
+        continue;
+      entries.emplace_back(r, c, -0.5 + 0.1 * k);
+      entries.emplace_back(c, r, -0.5 + 0.1 * k);
+    }
+  }
+  SparseMatrix full(n, n);
+  full.setFromTriplets(entries.begin(), entries.end());
+  full.makeCompressed();
+  const SparseMatrix a = upper(full);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(n, -2.0, 1.0);
+  PcgSolver solver(PcgOptions{.tolerance = 1e-13, .max_iterations = 200});
+  const Eigen::VectorXd x = solve_anew(solver, a, rhs);
+  EXPECT_EQ(solver.counters().fallbacks, 0);
+  // Residual 1e-13 of the right side, condition < 2: the error within 1e-12 of the solution.
+  const Eigen::VectorXd expected = cholmod_solution(a, rhs);
+  EXPECT_LT((x - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_LT((full * x - rhs).norm(), 1e-12 * rhs.norm());
+}
+
+TEST(PcgSolver, AFactorisationOfChangedValuesSolvesAsAFreshSolverToTheBit) {
+  // factorize() keeps the inverse of a diagonal block whose values did not change: after
+  // the coupling of two blocks changes (the springs of an open-close iteration), and after
+  // one block's own values do, the kept solver's solution and iterations are a fresh one's,
+  // to the bit. A stale inverse would still converge, but not by the same iterations.
+  const SparseMatrix a = upper(block_row(400, 6, 1.0, 20.0));
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
+  PcgSolver kept;
+  solve_anew(kept, a, rhs);
+  SparseMatrix changed = a;
+  for (int k = 0; k < changed.outerSize(); ++k) {
+    for (SparseMatrix::InnerIterator it(changed, k); it; ++it) {
+      if (it.row() / 6 == 100 && it.col() / 6 == 101) // the spring between blocks 100, 101
+        it.valueRef() *= 3.0;
+      if ((it.row() / 6 == 100 || it.row() / 6 == 101) && it.col() / 6 == it.row() / 6)
+        it.valueRef() += it.row() == it.col() ? 2.0 * 20.0 : 0.0; // its share on their diagonals
+      if (it.row() / 6 == 250 && it.col() / 6 == 250 && it.row() != it.col())
+        it.valueRef() *= 0.5; // one block's own values
+    }
+  }
+  for (const SparseMatrix* m : std::vector<const SparseMatrix*>{&changed, &a}) {
+    ASSERT_EQ(kept.factorize(*m), SolveStatus::ok);
+    Eigen::VectorXd x;
+    const long before = kept.counters().iterations;
+    ASSERT_EQ(kept.solve(rhs, x), SolveStatus::ok);
+    PcgSolver fresh;
+    EXPECT_EQ(x, solve_anew(fresh, *m, rhs));
+    EXPECT_EQ(kept.counters().iterations - before, fresh.counters().iterations);
+  }
+}
+
 TEST(PcgSolver, StartsFromTheGuessItIsGiven) {
   const SparseMatrix a = upper(block_row(50, 2, 1.0, 10.0));
   const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), 1.0, 3.0);
