@@ -30,7 +30,10 @@ With --steady F, every rock mass is also run for F times its steps (the first ru
 the same case stopped by `nmm run --steps K`), and the difference of the two runs gives the
 time of a step after the first K: the first step builds the sparsity pattern, analyses it
 and touches every buffer for the first time, which a run of three steps counts a third
-each. The goal at 10000 DDA blocks is then also judged on that steady time.
+each. The goal at 10000 DDA blocks is then also judged on that steady time. The rock mass
+dropped from rest stays nearly still for about 40 steps (one solve a step) and then moves
+(about 14 open-close iterations a step): `--sizes 10000 --models dda --solvers pcg --no-wall
+--steps 10000:40 --steady 2` times steps 41-80 (docs/benchmarks.md, "Conjugate gradients").
 
 The machine's load changes every time: the script prints the 1-minute load average before
 and after each run, and the CPU model. Times are wall-clock as nmm measures them.
