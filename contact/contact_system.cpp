@@ -717,7 +717,8 @@ void ContactSystem::kinematics(const Model& model,
     for (const int column : columns)
       k.dofs.push_back(slave_dofs[at(column)]);
     std::vector<int>& master_columns = work.master_columns;
-    master_shape.interpolation_on_edge(a, a, b, work.t_master, master_columns);
+    // The columns of the master's interpolation, at the first master term's point.
+    master_shape.interpolation_on_edge(master_normal[0].x, a, b, work.t_master, master_columns);
     const auto nm = static_cast<Eigen::Index>(master_columns.size());
     for (const int column : master_columns)
       k.dofs.push_back(master_dofs[at(column)]);

@@ -175,12 +175,12 @@ int Assembler::plan_if_in_pattern(std::span<const int> dofs) {
 
 std::uint64_t Assembler::plan_key(int n_local, const int* kept, const int* dofs, int m) {
   // splitmix64's finaliser over the size and the pairs, one after the other.
-  auto mix = [](std::uint64_t x) { return KeyIndex::hash(x); };
-  std::uint64_t key = mix(static_cast<std::uint64_t>(static_cast<std::uint32_t>(n_local)));
+  std::uint64_t key =
+      KeyIndex::hash(static_cast<std::uint64_t>(static_cast<std::uint32_t>(n_local)));
   for (int q = 0; q < m; ++q) {
     const auto pair = static_cast<std::uint64_t>(static_cast<std::uint32_t>(kept[q])) << 32U |
                       static_cast<std::uint32_t>(dofs[q]);
-    key = mix(key ^ pair);
+    key = KeyIndex::hash(key ^ pair);
   }
   return key == ~std::uint64_t{0} ? 0 : key; // all bits set: KeyIndex's empty slot
 }

@@ -340,7 +340,7 @@ SolveStatus PcgSolver::factorize(const SparseMatrix& matrix) {
     }
     if (same)
       continue;
-    block.setZero(size, size);
+    block.resize(size, size); // every entry is set below
     for (int j = 0, k = 0; j < size; ++j) {
       for (int i = 0; i <= j; ++i, ++k)
         block(i, j) = block(j, i) = kept[k];
