@@ -449,13 +449,21 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     if (!g.edge) {
       const int v = p.slave_edge;
       p.slave = boundary_.position[at(v)];
-      p.length = 0.5 * ((boundary_.position[at(boundary_.next[at(v)])] - p.slave).norm() +
-                        (boundary_.position[at(boundary_.previous[at(v)])] - p.slave).norm());
+      // Half of the vertex's two edges (Shi), or none at the end of an edge-to-edge contact
+      // that represents that face already (docs/formulation.md, "Joint strength").
+      p.length = c.ends_edge_pair
+                     ? 0.0
+                     : 0.5 * ((boundary_.position[at(boundary_.next[at(v)])] - p.slave).norm() +
+                              (boundary_.position[at(boundary_.previous[at(v)])] - p.slave).norm());
       p.stiffness = options_.penalty;
       p.strength =
           weaker(weaker(edge_strength_[at(v)], edge_strength_[at(boundary_.previous[at(v)])]),
                  edge_strength_[at(p.master)]);
-      p.bonded = edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
+      // A corner at the end of a bonded face belongs to that face's interface (it holds no
+      // length of its own, so no strength either: its spring yields with friction alone).
+      p.bonded = c.ends_edge_pair
+                     ? edge_bonded_[at(v)] != 0 || edge_bonded_[at(boundary_.previous[at(v)])] != 0
+                     : edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
       g.count = 1;
       points_.push_back(p);
       g0.push_back((p.slave - ma).dot(normal));
@@ -484,7 +492,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
         g0.push_back((a + u * (d - a) - ma).dot(normal));
     }
     ContactPoint& lead = points_[at(g.first)];
-    if (broken_.count(g.key) != 0) {
+    if (broken_.count(g.key) != 0 || broken_.count(interface_key(p.slave_edge, p.master)) != 0) {
       for (int q = 0; q < g.count; ++q)
         points_[at(g.first + q)].bonded = false;
     }
@@ -1114,7 +1122,6 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     const ContactMode before = lead.mode;
     const bool coupled = friction_coupled(lead); // in the solve that gave raw
     ContactMode after = before;
-    bool breaks = false;
     int sign = lead.slide_sign;
     const bool partial = g.edge && !lead.bonded; // springs only on the pressed part
     // Gaps, motions and the forces of springs stretched by them that are within the rounding
@@ -1141,8 +1148,10 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         }
       }
     } else if (partial ? !pressed.found && !tie : normal < -tension - noise) {
-      after = ContactMode::open; // lifted off, or tension beyond the strength of a bond
-      breaks = lead.bonded;
+      // Lifted off, or tension beyond the strength of a bond: a bond that is open when the
+      // iteration has converged breaks (end_step()); one that an iteration on the way opens
+      // keeps it, and holds again where it closes.
+      after = ContactMode::open;
     } else if (before == ContactMode::lock) {
       // A contact that has switched between lock and slide chatter_limit times in the step
       // sits at the limit of friction: locked it needs more than friction, sliding it turns
@@ -1163,7 +1172,6 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         } else {
           after = ContactMode::slide;
           sign = shear > 0.0 ? 1 : -1;
-          breaks = lead.bonded;
         }
       }
     } else if (motion * lead.slide_sign < -rounding_) {
@@ -1213,17 +1221,11 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       // pivot slid 2.4 mm against the way the load pushes it).
       p.mode = after;
       p.slide_sign = sign;
-      if (breaks) {
-        p.bonded = false;
-        broken_[p.key] = true;
-      }
       if (flip)
         ++p.flips;
       if (closed(before) && closed(after) && before != after)
         ++p.slips;
     }
-    if (breaks)
-      ++counters_.bonds_broken;
     if (partial && closed(after) && pressed.found)
       lift_off.push_back({static_cast<int>(&g - groups_.data()), pressed, !closed(before), pulling,
                           pushing, spring_noise, bearing});
@@ -1244,13 +1246,14 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       ContactPoint& p = points_[at(g.first + q)];
       const double share = placed > 0.0 ? p.stiffness / placed : 0.0;
       p.normal_force = now * share;
-      p.shear_force = after == ContactMode::lock    ? p.stiffness * measure[at(q)].shear
-                      : after == ContactMode::slide ? sign * std::max(0.0, now) * friction * share
-                                                    : 0.0;
+      p.shear_force = after == ContactMode::lock ? p.stiffness * measure[at(q)].shear
+                      : after == ContactMode::slide
+                          ? sign * (std::max(0.0, now) * friction * share + bond_cohesion(p))
+                          : 0.0;
     }
     if (after == ContactMode::slide) {
       const double work = friction * std::abs(motion);
-      friction_total += work * std::abs(now);
+      friction_total += work * std::abs(now) + (lead.bonded ? cohesion * std::abs(motion) : 0.0);
       // A change of the normal force within that of the springs stretched by the rounding is
       // none (the friction of a contact at a tie, on a normal force of rounding, would be
       // chased for ever: its relative change never settles). Coupled friction acted with the
@@ -1420,7 +1423,65 @@ void ContactSystem::clear_carried() {
   carried_anchors_.clear();
 }
 
+std::uint64_t ContactSystem::interface_key(int slave, int master) const {
+  const auto a = static_cast<std::uint64_t>(at(boundary_.block[at(slave)]));
+  const auto b = static_cast<std::uint64_t>(at(boundary_.block[at(master)]));
+  return std::uint64_t{1} << 63U | std::min(a, b) << 32U | std::max(a, b);
+}
+
+void ContactSystem::break_yielded_interfaces(const Model& model, const Eigen::VectorXd& raw) {
+  // An interface whose bonded contacts all slide has yielded all along: no elastic part of
+  // it is left to take more load, and Mohr-Coulomb's residual strength (friction) is all it
+  // keeps. Until then its sliding contacts carry their cohesion (plastic yield), so that
+  // the load they shed goes to the parts that still hold and the joint holds up to its
+  // whole strength c L + N tan(phi) whatever its stress concentrations. A contact in slide
+  // mode whose step motion is within the rounding does not move: it holds (friction at or
+  // above what acts on it, the mode it is in keeps it there).
+  KeySet holding(groups_.size());
+  KeySet yielded(groups_.size());
+  const auto unbond = [&](const Group& g, std::uint64_t key) {
+    broken_[key] = true;
+    ++counters_.bonds_broken;
+    for (int q = 0; q < g.count; ++q)
+      points_[at(g.first + q)].bonded = false;
+  };
+  for (const Group& g : groups_) {
+    const ContactPoint& lead = points_[at(g.first)];
+    if (!lead.bonded)
+      continue;
+    if (lead.mode == ContactMode::open) {
+      unbond(g, g.key); // opened by tension beyond its strength: this part breaks
+      continue;
+    }
+    const std::uint64_t key = interface_key(lead.slave_edge, lead.master);
+    bool holds = lead.mode == ContactMode::lock;
+    if (lead.mode == ContactMode::slide) {
+      double stiffness = 0.0;
+      double motion = 0.0;
+      for (int q = 0; q < g.count; ++q) {
+        const ContactPoint& p = points_[at(g.first + q)];
+        stiffness += p.stiffness;
+        motion += p.stiffness * cached_kinematics(model, p, at(g.first + q)).tangential(raw);
+      }
+      holds = std::abs(motion) <= rounding_ * stiffness;
+    }
+    if (holds)
+      holding.insert(key);
+    else
+      yielded.insert(key);
+  }
+  for (const Group& g : groups_) {
+    ContactPoint& lead = points_[at(g.first)];
+    if (!lead.bonded)
+      continue;
+    const std::uint64_t key = interface_key(lead.slave_edge, lead.master);
+    if (!holding.contains(key) && yielded.contains(key))
+      unbond(g, key);
+  }
+}
+
 void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
+  break_yielded_interfaces(model, raw);
   clear_carried();
   carried_index_.reserve(groups_.size());
   std::vector<std::pair<double, double>> anchors;

@@ -128,13 +128,22 @@ struct ContactPoint {
   double shift = 0.0;
 };
 
+/// The cohesion a bonded point keeps while it slides at its Mohr-Coulomb limit: an intact
+/// joint yields plastically in shear, c times the length the point represents, N; 0 unbonded.
+[[nodiscard]] inline double bond_cohesion(const ContactPoint& p) {
+  return p.bonded ? p.strength.cohesion * p.length : 0.0;
+}
+
 /// The friction force of a sliding point as its spring pair's load (Shi eq. 3.27-3.33):
 /// normal force of the last iteration times tan(friction angle), N; 0 when the point does not
 /// slide, is not pressed, or is frictionless (no friction term is assembled then).
 [[nodiscard]] inline double friction_force(const ContactPoint& p) {
-  if (p.mode != ContactMode::slide || p.normal_force <= 0.0 || p.strength.friction_angle == 0.0)
+  if (p.mode != ContactMode::slide)
     return 0.0;
-  return p.normal_force * std::tan(p.strength.friction_angle);
+  const double bond = bond_cohesion(p);
+  if (p.normal_force <= 0.0 || p.strength.friction_angle == 0.0)
+    return bond;
+  return p.normal_force * std::tan(p.strength.friction_angle) + bond;
 }
 
 /// One end of the part of an edge-to-edge overlap that has springs, as the lift-off
@@ -477,6 +486,13 @@ private:
   /// (u, ContactPoint::shift) of the points of group g; empty when every shift is 0 (no
   /// augmented-Lagrange pass: nothing allocated).
   [[nodiscard]] std::vector<std::pair<double, double>> shifts_of(const Group& g) const;
+  /// The key under which broken_ marks the interface between the blocks of edges @p slave
+  /// and @p master broken (its highest bit set: no contact key has it).
+  [[nodiscard]] std::uint64_t interface_key(int slave, int master) const;
+  /// Breaks the bonds of every interface (a pair of blocks) whose bonded contacts all slide
+  /// with the step displacement @p raw: it has yielded all along (docs/formulation.md,
+  /// "Joint strength").
+  void break_yielded_interfaces(const Model& model, const Eigen::VectorXd& raw);
   /// Anchor parameter on the master of the projection of slave point @p x.
   [[nodiscard]] double projection(int master, const Point2& x) const;
 
@@ -548,7 +564,8 @@ private:
   [[nodiscard]] double group_stiffness(const Group& g) const;
   /// Whether point @p p's friction is coupled in the solve (set_coupled_friction()).
   [[nodiscard]] bool friction_coupled(const ContactPoint& p) const noexcept {
-    return coupled_friction_ && p.mode == ContactMode::slide && p.strength.friction_angle > 0.0;
+    return coupled_friction_ && p.mode == ContactMode::slide && p.strength.friction_angle > 0.0 &&
+           !p.bonded;
   }
   /// Rounding of the coordinates of the step, m: gaps and motions within it change no mode.
   double rounding_ = 0.0;

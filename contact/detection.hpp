@@ -60,6 +60,11 @@ struct ContactCandidate {
   /// passed first (Shi 3.2 [1]); -1 otherwise.
   int alternative_slave = -1;
   int alternative_master = -1;
+  /// vertex_edge: the vertex lies just past a straight end of the master (within the part
+  /// an edge-to-edge contact leaves out as touching) and one of its edges is in edge-to-edge
+  /// contact with the master's straight continuation there: the end of a face on a joint.
+  /// Its spring stiffens the end of that pair and represents no length of its own.
+  bool ends_edge_pair = false;
 
   [[nodiscard]] std::uint64_t key() const noexcept {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(slave)) << 33) |
