@@ -292,11 +292,16 @@ private:
   }
 
   /// Whether vertex v, at parameter @p t of edge m, lies at a straight end of m, or past it
-  /// by no more than the touching end (measured on m, or with @p on_longer on the longer of
-  /// m and v's edge), while that edge of v is in edge-to-edge contact with the edge beyond
-  /// that end: a block's corner where its face on a joint ends, against the free surface
-  /// that continues the joint (docs/formulation.md, "Joint strength").
-  bool ends_pair_beyond(int v, int m, double t, bool on_longer) const {
+  /// by no more than the touching end (test_edge_edge() measures it on either edge of a
+  /// pair: here on the longer of m and v's edge), while that edge of v is in edge-to-edge
+  /// contact with the edge beyond that end: a block's corner where its face on a joint ends,
+  /// against the free surface that continues the joint. The pair represents the face; the
+  /// corner's spring stays (a block pivoting on that corner needs it, the pair's springs on a
+  /// short pressed part being soft: examples/10, whose pivot lies exactly so at a split of
+  /// the foundation's top) and represents no length of its own: half of the corner's edges
+  /// added to the length in contact made a 1.2 m joint 2.8 m long
+  /// (ContactCandidate::ends_edge_pair; docs/formulation.md, "Joint strength").
+  bool ends_edge_pair(int v, int m, double t) const {
     const double length = edge_length(m);
     for (const bool at_start : {true, false}) {
       const int end = at_start ? m : b_.next[at(m)];
@@ -305,22 +310,13 @@ private:
       if (!flat(end))
         continue;
       for (const int s : {v, b_.previous[at(v)]}) {
-        const double scale = on_longer ? std::max(length, edge_length(s)) : length;
-        if (past <= touching_end * scale && edge_pairs_.contains(pair_key(s, beyond)))
+        if (past <= touching_end * std::max(length, edge_length(s)) &&
+            edge_pairs_.contains(pair_key(s, beyond)))
           return true;
       }
     }
     return false;
   }
-
-  /// Whether the angle contact of vertex v against edge m (at @p t) ends such a pair, within
-  /// the touching end measured on the longer of the two edges (test_edge_edge() measures it
-  /// on either). The pair represents the face; the corner's spring stays (a block pivoting
-  /// on that corner needs it, the pair's springs on a short pressed part being soft:
-  /// examples/10, whose pivot lies exactly so at a split of the foundation's top) and
-  /// represents no length of its own: half of the corner's edges added to the length in
-  /// contact made a 1.2 m joint 2.8 m long (ContactCandidate::ends_edge_pair).
-  bool ends_edge_pair(int v, int m, double t) const { return ends_pair_beyond(v, m, t, true); }
 
   double edge_length(int e) const {
     return (b_.position[at(b_.next[at(e)])] - b_.position[at(e)]).norm();
