@@ -733,7 +733,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   update_summary("running");
   write_summary_json(summary_file, summary); // also proves the folder writable
 
-  PvdSeries pvd(dir / "case.pvd");
+  PvdSeries pvd(dir / "case.pvd", step_part_names());
   long written = -1;
   long step = 0;
   std::vector<Point2> initial_points;

@@ -47,7 +47,7 @@ PolygonMeshData make_cover_mesh_data(const CoverSystem& covers) {
   }
   data.cell_data.add("element", std::move(element))
       .add("triangle", std::move(triangle))
-      .add("covers", std::move(cover_ids), 3)
+      .add("covers", std::move(cover_ids), 3, {"node0", "node1", "node2"})
       .add("material", std::move(material))
       .add("block", std::move(block))
       .add("n_atoms", std::move(n_atoms))

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
+#include <string>
 #include <unordered_map>
 #include <utility>
 
@@ -23,6 +25,31 @@ std::string numbered_file_name(const char* prefix, long step, const char* extens
 }
 
 } // namespace
+
+double principal_angle(const PrincipalStress& principal) {
+  double degrees =
+      std::atan2(principal.direction.y(), principal.direction.x()) * 180.0 / std::numbers::pi;
+  // The direction of an axis, not of an arrow: (-90, 90].
+  if (degrees > 90.0)
+    degrees -= 180.0;
+  else if (degrees <= -90.0)
+    degrees += 180.0;
+  return degrees;
+}
+
+const char* contact_state_name(ContactMode mode) {
+  switch (mode) {
+  case ContactMode::open:
+    return "open";
+  case ContactMode::slide:
+    return "sliding";
+  case ContactMode::lock:
+    return "locked";
+  }
+  return "unknown";
+}
+
+std::vector<std::string> step_part_names() { return {"elements", "contacts", "boundaries"}; }
 
 PrincipalStress principal_stress(const Eigen::Vector3d& stress) {
   const double mean = 0.5 * (stress(0) + stress(1));
@@ -78,6 +105,7 @@ PolygonMeshData make_step_data(const Model& model,
   std::vector<double> stress;
   std::vector<double> principal;
   std::vector<double> direction;
+  std::vector<double> angle;
   std::vector<std::int32_t> element_id;
   std::vector<std::int32_t> material;
   std::vector<std::int32_t> block;
@@ -109,6 +137,7 @@ PolygonMeshData make_step_data(const Model& model,
       stress.insert(stress.end(), {s(0), s(1), s(2)});
       principal.insert(principal.end(), {p.s1, p.s2});
       direction.insert(direction.end(), {p.direction.x(), p.direction.y(), 0.0});
+      angle.push_back(principal_angle(p));
       element_id.push_back(e);
       material.push_back(element.material);
       block.push_back(element.block);
@@ -122,9 +151,10 @@ PolygonMeshData make_step_data(const Model& model,
     displacement[k] = data.points[k] - initial_points[k];
 
   data.point_data.add_vectors("displacement", displacement).add_vectors("velocity", point_velocity);
-  data.cell_data.add("stress", std::move(stress), 3)
-      .add("principal_stresses", std::move(principal), 2)
-      .add("principal_direction", std::move(direction), 3)
+  data.cell_data.add("stress", std::move(stress), 3, {"sxx", "syy", "sxy"})
+      .add("principal_stresses", std::move(principal), 2, {"s1", "s2"})
+      .add("principal_direction", std::move(direction), 3, {"x", "y", "z"})
+      .add("principal_angle", std::move(angle))
       .add("element", std::move(element_id))
       .add("material", std::move(material))
       .add("block", std::move(block))
@@ -143,6 +173,7 @@ PointCloudData make_contact_data(const ContactSystem& contact, const Model& mode
   std::vector<double> length;
   std::vector<double> pressure;
   std::vector<std::int32_t> state;
+  std::vector<std::string> state_name;
   std::vector<std::int32_t> bonded;
   std::vector<Point2> normal;
   // `pressure`, force over tributary length: an angle's spring force over its length; for the
@@ -178,17 +209,23 @@ PointCloudData make_contact_data(const ContactSystem& contact, const Model& mode
     }
     pressure.push_back(mean);
     state.push_back(static_cast<std::int32_t>(p.mode));
+    state_name.emplace_back(contact_state_name(p.mode));
     bonded.push_back(p.bonded ? 1 : 0);
   }
   data.point_data.add("normal_force", std::move(normal_force))
       .add("shear_force", std::move(shear_force))
       .add("state", std::move(state))
+      .add("state_name", std::move(state_name))
       .add("gap", std::move(gap))
       .add_vectors("normal", normal)
       .add("bonded", std::move(bonded))
       .add("length", std::move(length))
       .add("pressure", std::move(pressure));
-  data.field_data.add_value("TimeValue", time);
+  std::vector<std::string> legend;
+  for (const ContactMode mode : {ContactMode::open, ContactMode::slide, ContactMode::lock}) {
+    legend.push_back(std::to_string(static_cast<int>(mode)) + " " + contact_state_name(mode));
+  }
+  data.field_data.add_value("TimeValue", time).add("state_legend", std::move(legend));
   return data;
 }
 

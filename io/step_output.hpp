@@ -26,6 +26,18 @@ struct PrincipalStress {
 
 [[nodiscard]] PrincipalStress principal_stress(const Eigen::Vector3d& stress);
 
+/// The angle of @p principal's s1 direction from the x axis, degrees, in (-90, 90]
+/// (counter-clockwise positive): the step files' cell array `principal_angle`.
+[[nodiscard]] double principal_angle(const PrincipalStress& principal);
+
+/// The name of a contact state in the contact files: "open", "sliding", "locked" (the
+/// `state_name` of each point, and the `state_legend` "0 open", "1 sliding", "2 locked").
+[[nodiscard]] const char* contact_state_name(ContactMode mode);
+
+/// The names of the parts of an output step in `case.pvd`, by part number: "elements" (the
+/// step file), "contacts" and "boundaries" (PvdSeries's `part_names`).
+[[nodiscard]] std::vector<std::string> step_part_names();
+
 /// Area centroid of all polygons of @p element (holes subtracted); the mean vertex when the
 /// element has no area.
 [[nodiscard]] Point2 element_centroid(const ModelElement& element);
@@ -38,11 +50,13 @@ struct PrincipalStress {
 
 /// The model's elements at their current position as a polygon mesh for write_vtu(): one
 /// cell per element polygon, each with its own points (as `mesh.vtu`).
-/// - point data `displacement` (m, 3 components, z = 0): current minus @p initial_points;
-///   `velocity` (m/s, 3 components): the element's velocity field at the point.
-/// - cell data `stress` (Pa; sxx, syy, sxy at the element's centroid), `principal_stresses`
-///   (Pa; s1 >= s2), `principal_direction` (unit vector of s1, 3 components, z = 0),
-///   `element`, `material`, `block`, `kind` (ElementKind; Int32).
+/// - point data `displacement` (m, 3 components x, y, z = 0): current minus
+///   @p initial_points; `velocity` (m/s, 3 components x, y, z): the element's velocity field at
+///   the point.
+/// - cell data `stress` (Pa; components sxx, syy, sxy, at the element's centroid),
+///   `principal_stresses` (Pa; s1 >= s2), `principal_direction` (unit vector of s1, x, y,
+///   z = 0), `principal_angle` (degrees, principal_angle()), `element`, `material`, `block`,
+///   `kind` (ElementKind; Int32).
 /// - field data `TimeValue` (s).
 /// @param initial_points  step_points() of the model at step 0.
 /// @param velocity        raw velocity of every unknown (TimeStepper::velocity()).
@@ -57,12 +71,14 @@ struct PrincipalStress {
 /// The contact points of the last step as a point cloud for write_vtp_points(), at their
 /// current position (the slave material point): point data `normal_force` and
 /// `shear_force` (N per metre of thickness; compressive normal force positive, shear along
-/// the master edge), `state` (Int32: 0 open, 1 slide, 2 lock), `gap` (m, negative:
+/// the master edge), `state` (Int32: 0 open, 1 slide, 2 lock), `state_name` (the same as
+/// text: contact_state_name()), `gap` (m, negative:
 /// penetration), `normal` (unit outward normal of the master edge, 3 components), `bonded`
 /// (Int32: 1 for an intact joint), `length` (the point's tributary length, m), `pressure`
 /// (compressive normal stress, Pa: an angle's spring force over its length; for the points of
 /// edge-to-edge contacts the force of the closed points on the same slave edge over their
-/// summed lengths; 0 when open); field data `TimeValue` (s).
+/// summed lengths; 0 when open); field data `TimeValue` (s) and `state_legend` (text, one
+/// line per state: "0 open", "1 sliding", "2 locked").
 [[nodiscard]] PointCloudData
 make_contact_data(const ContactSystem& contact, const Model& model, double time);
 

@@ -16,6 +16,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkTypeInt32Array.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
@@ -70,17 +71,33 @@ DataArrays& DataArrays::push(DataArray array) {
           "array '" + array.name + "' has " + std::to_string(array.n_values()) +
               " values, not a multiple of its " + std::to_string(array.n_components) +
               " components");
+  require(array.component_names.empty() ||
+              array.component_names.size() == static_cast<std::size_t>(array.n_components),
+          "array '" + array.name + "' has " + std::to_string(array.component_names.size()) +
+              " component names for " + std::to_string(array.n_components) + " components");
   require(find(array.name) == nullptr, "array name '" + array.name + "' used twice");
   arrays_.push_back(std::move(array));
   return *this;
 }
 
-DataArrays& DataArrays::add(std::string name, std::vector<double> values, int n_components) {
-  return push(DataArray{std::move(name), n_components, std::move(values)});
+DataArrays& DataArrays::add(std::string name,
+                            std::vector<double> values,
+                            int n_components,
+                            std::vector<std::string> component_names) {
+  return push(
+      DataArray{std::move(name), n_components, std::move(values), std::move(component_names)});
 }
 
-DataArrays& DataArrays::add(std::string name, std::vector<std::int32_t> values, int n_components) {
-  return push(DataArray{std::move(name), n_components, std::move(values)});
+DataArrays& DataArrays::add(std::string name,
+                            std::vector<std::int32_t> values,
+                            int n_components,
+                            std::vector<std::string> component_names) {
+  return push(
+      DataArray{std::move(name), n_components, std::move(values), std::move(component_names)});
+}
+
+DataArrays& DataArrays::add(std::string name, std::vector<std::string> values) {
+  return push(DataArray{std::move(name), 1, std::move(values), {}});
 }
 
 DataArrays& DataArrays::add_vectors(std::string name, std::span<const Point2> vectors) {
@@ -91,7 +108,7 @@ DataArrays& DataArrays::add_vectors(std::string name, std::span<const Point2> ve
     values.push_back(v.y());
     values.push_back(0.0);
   }
-  return add(std::move(name), std::move(values), 3);
+  return add(std::move(name), std::move(values), 3, {"x", "y", "z"});
 }
 
 DataArrays& DataArrays::add_value(std::string name, double value) {
@@ -298,26 +315,39 @@ namespace {
 // ----------------------------------------------------------------------------------------
 // VTK conversion
 
+vtkSmartPointer<vtkAbstractArray> to_vtk(const std::vector<std::string>& values, int n_components) {
+  auto result = vtkSmartPointer<vtkStringArray>::New();
+  result->SetNumberOfComponents(n_components);
+  result->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  for (std::size_t k = 0; k < values.size(); ++k)
+    result->SetValue(static_cast<vtkIdType>(k), values[k]);
+  return result;
+}
+
+template <class Value>
+vtkSmartPointer<vtkAbstractArray> to_vtk(const std::vector<Value>& values, int n_components) {
+  using VtkArray =
+      std::conditional_t<std::is_same_v<Value, double>, vtkDoubleArray, vtkTypeInt32Array>;
+  auto result = vtkSmartPointer<VtkArray>::New();
+  result->SetNumberOfComponents(n_components);
+  result->SetNumberOfTuples(static_cast<vtkIdType>(values.size()) / n_components);
+  // -0.0 is written as 0.0. VTK puts each array's range into the file's header and
+  // computes it with threads: of an array holding both zeros, which one is the minimum
+  // depends on the threads' order, so the same data gave "-0" in one file and "0" in
+  // the next (a restarted run's contact forces differed from the straight run's in
+  // that header alone, once under load). x + 0.0 is x for every other value.
+  std::transform(values.begin(), values.end(), result->GetPointer(0),
+                 [](Value v) { return v + Value{0}; });
+  return result;
+}
+
 vtkSmartPointer<vtkAbstractArray> to_vtk(const DataArray& array) {
-  return std::visit(
-      [&](const auto& values) -> vtkSmartPointer<vtkAbstractArray> {
-        using Value = typename std::decay_t<decltype(values)>::value_type;
-        using VtkArray =
-            std::conditional_t<std::is_same_v<Value, double>, vtkDoubleArray, vtkTypeInt32Array>;
-        auto result = vtkSmartPointer<VtkArray>::New();
-        result->SetName(array.name.c_str());
-        result->SetNumberOfComponents(array.n_components);
-        result->SetNumberOfTuples(static_cast<vtkIdType>(array.n_tuples()));
-        // -0.0 is written as 0.0. VTK puts each array's range into the file's header and
-        // computes it with threads: of an array holding both zeros, which one is the minimum
-        // depends on the threads' order, so the same data gave "-0" in one file and "0" in
-        // the next (a restarted run's contact forces differed from the straight run's in
-        // that header alone, once under load). x + 0.0 is x for every other value.
-        std::transform(values.begin(), values.end(), result->GetPointer(0),
-                       [](Value v) { return v + Value{0}; });
-        return result;
-      },
-      array.values);
+  vtkSmartPointer<vtkAbstractArray> result = std::visit(
+      [&](const auto& values) { return to_vtk(values, array.n_components); }, array.values);
+  result->SetName(array.name.c_str());
+  for (std::size_t c = 0; c < array.component_names.size(); ++c)
+    result->SetComponentName(static_cast<vtkIdType>(c), array.component_names[c].c_str());
+  return result;
 }
 
 /// Adds @p arrays to @p target; @p n_tuples is the required tuple count (points or cells),
@@ -492,7 +522,8 @@ std::string exact_text(double value) {
 
 } // namespace
 
-PvdSeries::PvdSeries(fs::path pvd_file) : pvd_file_(std::move(pvd_file)) {}
+PvdSeries::PvdSeries(fs::path pvd_file, std::vector<std::string> part_names)
+    : pvd_file_(std::move(pvd_file)), part_names_(std::move(part_names)) {}
 
 void PvdSeries::add(double time, const std::vector<fs::path>& parts) {
   require(!parts.empty(), "an output step without files");
@@ -526,9 +557,13 @@ void PvdSeries::write() const {
         << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\""
         << (std::endian::native == std::endian::little ? "LittleEndian" : "BigEndian")
         << "\">\n  <Collection>\n";
-    for (const Entry& entry : entries_)
+    for (const Entry& entry : entries_) {
       out << "    <DataSet timestep=\"" << exact_text(entry.time) << "\" group=\"\" part=\""
-          << entry.part << "\" file=\"" << xml_escape(entry.file) << "\"/>\n";
+          << entry.part << "\"";
+      if (entry.part >= 0 && static_cast<std::size_t>(entry.part) < part_names_.size())
+        out << " name=\"" << xml_escape(part_names_[static_cast<std::size_t>(entry.part)]) << "\"";
+      out << " file=\"" << xml_escape(entry.file) << "\"/>\n";
+    }
     out << "  </Collection>\n</VTKFile>\n";
     out.flush();
     return static_cast<bool>(out);

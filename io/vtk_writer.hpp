@@ -18,14 +18,21 @@ namespace nmm {
 
 /// One named array of point, cell or field data: n_tuples() tuples of n_components values,
 /// stored tuple by tuple (x0 y0 z0 x1 y1 z1 ...). Real values are written as Float64,
-/// integer values as Int32.
+/// integer values as Int32, text as a VTK String array (ParaView lists it in the
+/// spreadsheet and in hover tooltips, and colours by it as categories).
 struct DataArray {
   std::string name;
   int n_components = 1;
-  std::variant<std::vector<double>, std::vector<std::int32_t>> values;
+  std::variant<std::vector<double>, std::vector<std::int32_t>, std::vector<std::string>> values;
+  /// Names of the components, shown by ParaView instead of 0, 1, 2 (e.g. "sxx", "syy",
+  /// "sxy"): empty, or one per component.
+  std::vector<std::string> component_names;
 
   [[nodiscard]] bool is_integer() const noexcept {
     return std::holds_alternative<std::vector<std::int32_t>>(values);
+  }
+  [[nodiscard]] bool is_text() const noexcept {
+    return std::holds_alternative<std::vector<std::string>>(values);
   }
   [[nodiscard]] std::size_t n_values() const noexcept;
   /// n_values() / n_components.
@@ -37,13 +44,23 @@ struct DataArray {
 /// Names must be unique within one DataArrays (ParaView picks arrays by name).
 class DataArrays {
 public:
-  /// Adds a real array of @p n_components values per tuple (1 scalar, 3 vector, 9 tensor...).
+  /// Adds a real array of @p n_components values per tuple (1 scalar, 3 vector, 9 tensor...),
+  /// its components named @p component_names (none, or one name per component).
   /// @pre values.size() is a multiple of n_components > 0; @p name not used yet.
-  DataArrays& add(std::string name, std::vector<double> values, int n_components = 1);
+  DataArrays& add(std::string name,
+                  std::vector<double> values,
+                  int n_components = 1,
+                  std::vector<std::string> component_names = {});
   /// Adds an integer array (ids, counts, flags), written as Int32.
-  DataArrays& add(std::string name, std::vector<std::int32_t> values, int n_components = 1);
-  /// Adds 2D vectors as 3-component tuples (x, y, 0): ParaView's Warp By Vector, Glyph and
-  /// Stream Tracer only accept 3-component vectors.
+  DataArrays& add(std::string name,
+                  std::vector<std::int32_t> values,
+                  int n_components = 1,
+                  std::vector<std::string> component_names = {});
+  /// Adds a text array of one string per tuple (e.g. a name for each value of an integer
+  /// code, or a legend in field data).
+  DataArrays& add(std::string name, std::vector<std::string> values);
+  /// Adds 2D vectors as 3-component tuples (x, y, 0) with components named "x", "y", "z":
+  /// ParaView's Warp By Vector, Glyph and Stream Tracer only accept 3-component vectors.
   DataArrays& add_vectors(std::string name, std::span<const Point2> vectors);
   /// Adds a single real value (one tuple, one component), e.g. field data `TimeValue`.
   DataArrays& add_value(std::string name, double value);
@@ -138,8 +155,10 @@ public:
     std::string file;
   };
 
-  /// @param pvd_file  the .pvd to (re)write; its directory must exist when add() is called.
-  explicit PvdSeries(std::filesystem::path pvd_file);
+  /// @param pvd_file    the .pvd to (re)write; its directory must exist when add() is called.
+  /// @param part_names  the `name` attribute of each part's DataSet lines, by part number
+  ///                    (ParaView names the series' blocks so); a part without one has none.
+  explicit PvdSeries(std::filesystem::path pvd_file, std::vector<std::string> part_names = {});
 
   /// Appends the data files of one output step at @p time, in seconds, and rewrites the .pvd
   /// once. The files (absolute or relative to the current directory) are the step's parts,
@@ -157,6 +176,7 @@ public:
 private:
   void write() const;
   std::filesystem::path pvd_file_;
+  std::vector<std::string> part_names_;
   std::vector<Entry> entries_;
 };
 

@@ -31,6 +31,7 @@ namespace nmm {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::component_names;
 using testing::parse_json;
 using testing::ProcessResult;
 using testing::PvdEntry;
@@ -40,6 +41,8 @@ using testing::read_vtp;
 using testing::read_vtu;
 using testing::replaced;
 using testing::TempDir;
+using testing::text_values;
+using Names = std::vector<std::string>;
 
 const fs::path nmm_program = NMM_EXECUTABLE;
 const fs::path example = fs::path(NMM_EXAMPLES_DIR) / "01_cantilever";
@@ -105,8 +108,28 @@ vtkSmartPointer<vtkUnstructuredGrid> read_step(const fs::path& file, double time
   expect_finite_array(grid->GetCellData(), "stress", 3, cells);
   expect_finite_array(grid->GetCellData(), "principal_stresses", 2, cells);
   expect_finite_array(grid->GetCellData(), "principal_direction", 3, cells);
+  expect_finite_array(grid->GetCellData(), "principal_angle", 1, cells);
   for (const char* name : {"element", "material", "block", "kind"})
     expect_finite_array(grid->GetCellData(), name, 1, cells);
+  // Components named for people (issue 43), as docs/output.md lists them.
+  EXPECT_EQ(component_names(grid->GetPointData(), "displacement"), (Names{"x", "y", "z"}));
+  EXPECT_EQ(component_names(grid->GetPointData(), "velocity"), (Names{"x", "y", "z"}));
+  EXPECT_EQ(component_names(grid->GetCellData(), "stress"), (Names{"sxx", "syy", "sxy"}));
+  EXPECT_EQ(component_names(grid->GetCellData(), "principal_stresses"), (Names{"s1", "s2"}));
+  EXPECT_EQ(component_names(grid->GetCellData(), "principal_direction"), (Names{"x", "y", "z"}));
+  vtkDataArray* direction = grid->GetCellData()->GetArray("principal_direction");
+  vtkDataArray* angle = grid->GetCellData()->GetArray("principal_angle");
+  if (direction != nullptr && angle != nullptr) {
+    for (vtkIdType c = 0; c < cells; ++c) {
+      const double degrees = angle->GetComponent(c, 0);
+      EXPECT_GT(degrees, -90.0);
+      EXPECT_LE(degrees, 90.0);
+      // The direction of s1 is the angle's axis, either way along it.
+      const double along = std::cos(degrees * M_PI / 180.0) * direction->GetComponent(c, 0) +
+                           std::sin(degrees * M_PI / 180.0) * direction->GetComponent(c, 1);
+      EXPECT_NEAR(std::abs(along), 1.0, 1e-12) << "cell " << c;
+    }
+  }
   vtkDataArray* stored_time = grid->GetFieldData()->GetArray("TimeValue");
   EXPECT_NE(stored_time, nullptr) << file;
   if (stored_time != nullptr) {
@@ -167,6 +190,8 @@ TEST_F(Cli, CantileverRunsEndToEndAndEveryOutputReadsBack) {
   EXPECT_EQ(series[1].file, "step_000001.vtu");
   EXPECT_EQ(series[0].time, 0.0);
   EXPECT_GT(series[1].time, series[0].time);
+  EXPECT_EQ(series[0].name, "elements");
+  EXPECT_EQ(series[1].name, "elements");
   for (const PvdEntry& entry : series)
     static_cast<void>(read_step(out / entry.file, entry.time));
   // The loaded end went down by about 0.1 m (the accuracy is the verification test's job).
@@ -233,12 +258,29 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
   ASSERT_GE(series.size(), 4u);
   int contact_files = 0;
   for (const PvdEntry& entry : series) {
+    if (entry.file.rfind("step_", 0) == 0) {
+      EXPECT_EQ(entry.name, "elements") << entry.file;
+    }
     if (entry.file.rfind("contacts_", 0) != 0)
       continue;
     ++contact_files;
+    EXPECT_EQ(entry.name, "contacts") << entry.file;
     const vtkSmartPointer<vtkPolyData> points = read_vtp(out / entry.file);
     const vtkIdType n = points->GetNumberOfPoints();
     ASSERT_GT(n, 0) << entry.file;
+    // The state as text beside its code, and the legend of the codes (issue 43).
+    EXPECT_EQ(text_values(points->GetFieldData(), "state_legend"),
+              (Names{"0 open", "1 sliding", "2 locked"}))
+        << entry.file;
+    const Names state_names = text_values(points->GetPointData(), "state_name");
+    vtkDataArray* codes = points->GetPointData()->GetArray("state");
+    ASSERT_EQ(static_cast<vtkIdType>(state_names.size()), n) << entry.file;
+    ASSERT_NE(codes, nullptr);
+    const Names by_code{"open", "sliding", "locked"};
+    for (vtkIdType k = 0; k < n; ++k)
+      EXPECT_EQ(state_names[static_cast<std::size_t>(k)],
+                by_code.at(static_cast<std::size_t>(codes->GetComponent(k, 0))));
+    EXPECT_EQ(component_names(points->GetPointData(), "normal"), (Names{"x", "y", "z"}));
     expect_finite_array(points->GetPointData(), "normal_force", 1, n);
     expect_finite_array(points->GetPointData(), "shear_force", 1, n);
     expect_finite_array(points->GetPointData(), "state", 1, n);
@@ -268,6 +310,7 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
     if (entry.file.rfind("boundary_", 0) != 0)
       continue;
     EXPECT_EQ(entry.part, 2) << entry.file;
+    EXPECT_EQ(entry.name, "boundaries") << entry.file;
     boundaries.push_back(read_vtp(out / entry.file));
     vtkPolyData& lines = *boundaries.back();
     ASSERT_GT(lines.GetNumberOfLines(), 0) << entry.file;
@@ -451,6 +494,7 @@ TEST_F(Cli, MeshWritesTheElementsTheMathMeshAndTheBoundary) {
   const auto elements = read_vtu(out / "mesh.vtu");
   EXPECT_GT(elements->GetNumberOfCells(), 0);
   EXPECT_NE(elements->GetCellData()->GetArray("covers"), nullptr);
+  EXPECT_EQ(component_names(elements->GetCellData(), "covers"), (Names{"node0", "node1", "node2"}));
   EXPECT_GT(read_vtu(out / "math_mesh.vtu")->GetNumberOfCells(), 0);
   EXPECT_GT(read_vtp(out / "boundary.vtp")->GetNumberOfCells(), 0);
   expect_all(mesh.out, {"mesh.vtu", "math_mesh.vtu", "boundary.vtp"});

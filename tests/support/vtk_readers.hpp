@@ -3,9 +3,12 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <vtkAbstractArray.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLDataElement.h>
 #include <vtkXMLPolyDataReader.h>
@@ -34,10 +37,37 @@ inline vtkSmartPointer<vtkPolyData> read_vtp(const std::filesystem::path& file) 
   return reader->GetOutput();
 }
 
+/// The component names of a read-back array ("" for a component without one).
+inline std::vector<std::string> component_names(vtkFieldData* data, const std::string& name) {
+  std::vector<std::string> names;
+  vtkAbstractArray* array = data->GetAbstractArray(name.c_str());
+  EXPECT_NE(array, nullptr) << "no array " << name;
+  if (array == nullptr)
+    return names;
+  for (int c = 0; c < array->GetNumberOfComponents(); ++c) {
+    const char* component = array->GetComponentName(c);
+    names.emplace_back(component == nullptr ? "" : component);
+  }
+  return names;
+}
+
+/// The values of a read-back text array.
+inline std::vector<std::string> text_values(vtkFieldData* data, const std::string& name) {
+  std::vector<std::string> values;
+  auto* array = vtkStringArray::SafeDownCast(data->GetAbstractArray(name.c_str()));
+  EXPECT_NE(array, nullptr) << "no text array " << name;
+  if (array == nullptr)
+    return values;
+  for (vtkIdType k = 0; k < array->GetNumberOfValues(); ++k)
+    values.push_back(array->GetValue(k));
+  return values;
+}
+
 /// One DataSet line of a .pvd.
 struct PvdEntry {
   double time = 0.0; ///< the timestep attribute, read with std::stod
   int part = 0;
+  std::string name; ///< the part's name ("elements", "contacts"...), empty when it has none
   std::string file; ///< as written: relative to the .pvd's folder
 };
 
@@ -64,8 +94,8 @@ inline std::vector<PvdEntry> read_pvd(const std::filesystem::path& pvd) {
       return std::string(value == nullptr ? "" : value);
     };
     const std::string part = attribute("part");
-    entries.push_back(
-        {std::stod(attribute("timestep")), part.empty() ? 0 : std::stoi(part), attribute("file")});
+    entries.push_back({std::stod(attribute("timestep")), part.empty() ? 0 : std::stoi(part),
+                       attribute("name"), attribute("file")});
   }
   return entries;
 }

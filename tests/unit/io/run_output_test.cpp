@@ -198,6 +198,33 @@ TEST(StepOutput, PrincipalStressesAreOrderedAndTheDirectionIsAnEigenvector) {
   EXPECT_NEAR(shear.direction.y(), std::sqrt(0.5), 1e-15);
 }
 
+TEST(StepOutput, PrincipalAngleIsTheDirectionOfS1FromXInDegreesWithinMinus90To90) {
+  const auto angle = [](double sxx, double syy, double sxy) {
+    return principal_angle(principal_stress({sxx, syy, sxy}));
+  };
+  EXPECT_NEAR(angle(2.0, 1.0, 0.0), 0.0, 1e-12);
+  EXPECT_NEAR(angle(0.0, 0.0, 3.0), 45.0, 1e-12);
+  EXPECT_NEAR(angle(0.0, 0.0, -3.0), -45.0, 1e-12);
+  EXPECT_NEAR(angle(-2.0, 1.0, 0.0), 90.0, 1e-12) << "s1 along y: +90, not -90";
+  EXPECT_NEAR(angle(-2.0, 1.0, -1e-300), 90.0, 1e-12);
+  // A direction pointing the other way along the same axis has the same angle.
+  PrincipalStress flipped = principal_stress({1.0, 2.0, 1.0});
+  const double along = principal_angle(flipped);
+  flipped.direction = -flipped.direction;
+  EXPECT_NEAR(principal_angle(flipped), along, 1e-12);
+  EXPECT_NEAR(along,
+              std::atan2(flipped.direction.y(), flipped.direction.x()) * 180.0 / std::numbers::pi +
+                  180.0,
+              1e-12);
+}
+
+TEST(StepOutput, ContactStatesAndStepPartsHaveNames) {
+  EXPECT_STREQ(contact_state_name(ContactMode::open), "open");
+  EXPECT_STREQ(contact_state_name(ContactMode::slide), "sliding");
+  EXPECT_STREQ(contact_state_name(ContactMode::lock), "locked");
+  EXPECT_EQ(step_part_names(), (std::vector<std::string>{"elements", "contacts", "boundaries"}));
+}
+
 TEST(StepOutput, CentroidSubtractsHolesWhateverTheLoopOrientation) {
   ModelElement element;
   // A 4 x 2 rectangle (clockwise) with a 1 x 1 hole (counter-clockwise) at its right end.
@@ -233,21 +260,26 @@ TEST(StepOutput, EveryArrayHasOneTuplePerPointOrCellAndTheStartHasNoDisplacement
     const char* name;
     int components;
     bool integer;
+    std::vector<std::string> component_names;
   };
-  const std::vector<Expected> expected{{&data.point_data, "displacement", 3, false},
-                                       {&data.point_data, "velocity", 3, false},
-                                       {&data.cell_data, "stress", 3, false},
-                                       {&data.cell_data, "principal_stresses", 2, false},
-                                       {&data.cell_data, "principal_direction", 3, false},
-                                       {&data.cell_data, "element", 1, true},
-                                       {&data.cell_data, "material", 1, true},
-                                       {&data.cell_data, "block", 1, true},
-                                       {&data.cell_data, "kind", 1, true}};
+  const std::vector<std::string> xyz{"x", "y", "z"};
+  const std::vector<Expected> expected{
+      {&data.point_data, "displacement", 3, false, xyz},
+      {&data.point_data, "velocity", 3, false, xyz},
+      {&data.cell_data, "stress", 3, false, {"sxx", "syy", "sxy"}},
+      {&data.cell_data, "principal_stresses", 2, false, {"s1", "s2"}},
+      {&data.cell_data, "principal_direction", 3, false, xyz},
+      {&data.cell_data, "principal_angle", 1, false, {}},
+      {&data.cell_data, "element", 1, true, {}},
+      {&data.cell_data, "material", 1, true, {}},
+      {&data.cell_data, "block", 1, true, {}},
+      {&data.cell_data, "kind", 1, true, {}}};
   for (const Expected& e : expected) {
     const DataArray* array = e.on->find(e.name);
     ASSERT_NE(array, nullptr) << e.name;
     EXPECT_EQ(array->n_components, e.components) << e.name;
     EXPECT_EQ(array->is_integer(), e.integer) << e.name;
+    EXPECT_EQ(array->component_names, e.component_names) << e.name;
     EXPECT_EQ(array->n_tuples(), e.on == &data.point_data ? data.points.size() : n_cells) << e.name;
   }
   for (const double d : std::get<std::vector<double>>(data.point_data.find("displacement")->values))

@@ -37,11 +37,13 @@ namespace nmm {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::component_names;
 using testing::PvdEntry;
 using testing::read_pvd;
 using testing::read_text;
 using testing::read_vtp;
 using testing::read_vtu;
+using testing::text_values;
 
 // ---------------------------------------------------------------------------------------
 // Helpers
@@ -183,6 +185,20 @@ TEST(DataArrays, VectorsGetThreeComponentsAndNamesMustBeUnique) {
   EXPECT_THROW(arrays.add("stress", std::vector<double>{1.0, 2.0}, 3), std::logic_error);
 }
 
+TEST(DataArrays, VectorComponentsAreNamedXYZAndOtherNamesNeedOnePerComponent) {
+  DataArrays arrays;
+  const std::vector<Point2> v{{1, 2}};
+  arrays.add_vectors("velocity", v)
+      .add("stress", std::vector<double>{1, 2, 3}, 3, {"sxx", "syy", "sxy"})
+      .add("state_name", std::vector<std::string>{"open", "locked"});
+  EXPECT_EQ(arrays.find("velocity")->component_names, (std::vector<std::string>{"x", "y", "z"}));
+  EXPECT_EQ(arrays.find("stress")->component_names,
+            (std::vector<std::string>{"sxx", "syy", "sxy"}));
+  EXPECT_TRUE(arrays.find("state_name")->is_text());
+  EXPECT_EQ(arrays.find("state_name")->n_tuples(), 2U);
+  EXPECT_THROW(arrays.add("principal", std::vector<double>{1, 2}, 2, {"s1"}), std::logic_error);
+}
+
 // ---------------------------------------------------------------------------------------
 // write_vtu
 
@@ -227,6 +243,31 @@ TEST_F(VtkWriterTest, VtuRoundTripsPointsCellsAndEveryKindOfArray) {
   EXPECT_NE(text.find("encoding=\"raw\""), std::string::npos);
   EXPECT_EQ(text.find("format=\"ascii\""), std::string::npos);
   EXPECT_TRUE(temporary_files().empty());
+}
+
+TEST_F(VtkWriterTest, ComponentNamesAndTextArraysReadBack) {
+  PolygonMeshData data;
+  data.points = {{0, 0}, {1, 0}, {0, 1}};
+  data.cells = {{{0, 1, 2}, {}}};
+  const std::vector<Point2> displacement{{0.1, 0}, {0.2, 0}, {0.3, 0.1}};
+  data.point_data.add_vectors("displacement", displacement);
+  data.cell_data.add("stress", std::vector<double>{1, 2, 3}, 3, {"sxx", "syy", "sxy"})
+      .add("covers", std::vector<std::int32_t>{4, 5, 6}, 3, {"node0", "node1", "node2"})
+      .add("kind_name", std::vector<std::string>{"VEM block"});
+  data.field_data.add("legend", std::vector<std::string>{"0 open", "1 sliding", "2 locked", ""});
+  write_vtu(dir_ / "named.vtu", data);
+
+  const auto grid = read_vtu(dir_ / "named.vtu");
+  EXPECT_EQ(component_names(grid->GetPointData(), "displacement"),
+            (std::vector<std::string>{"x", "y", "z"}));
+  EXPECT_EQ(component_names(grid->GetCellData(), "stress"),
+            (std::vector<std::string>{"sxx", "syy", "sxy"}));
+  EXPECT_EQ(component_names(grid->GetCellData(), "covers"),
+            (std::vector<std::string>{"node0", "node1", "node2"}));
+  expect_array(grid->GetCellData(), "stress", 3, {1, 2, 3}, false);
+  EXPECT_EQ(text_values(grid->GetCellData(), "kind_name"), std::vector<std::string>{"VEM block"});
+  EXPECT_EQ(text_values(grid->GetFieldData(), "legend"),
+            (std::vector<std::string>{"0 open", "1 sliding", "2 locked", ""}));
 }
 
 TEST_F(VtkWriterTest, WrongArraySizeOrIndexIsAProgrammerError) {
@@ -532,9 +573,33 @@ TEST_F(VtkWriterTest, PvdIsValidAfterEveryAddAndListsEntriesInOrder) {
     EXPECT_EQ(series.entries().size(), listed.size());
     EXPECT_TRUE(temporary_files().empty());
   }
+  for (const PvdEntry& line : read_pvd(pvd))
+    EXPECT_EQ(line.name, "") << "a series without part names names no part";
   // The entry VTK parsed really is the file: read it through the .pvd's relative path.
   EXPECT_EQ(read_vtu(dir_ / read_pvd(pvd).back().file)->GetNumberOfCells(), 1);
   EXPECT_NE(read_text(pvd).find("a&amp;b &lt;&apos;quoted&apos;&gt;.vtu"), std::string::npos);
+}
+
+TEST_F(VtkWriterTest, PvdNamesEachPartThatHasAName) {
+  PolygonMeshData mesh;
+  mesh.points = {{0, 0}, {1, 0}, {0, 1}};
+  mesh.cells = {{{0, 1, 2}, {}}};
+  std::vector<fs::path> files;
+  for (const char* name : {"a.vtu", "b.vtu", "c.vtu"}) {
+    files.push_back(dir_ / name);
+    write_vtu(files.back(), mesh);
+  }
+  PvdSeries series(dir_ / "case.pvd", {"elements", "contacts & <more>"});
+  series.add(0.5, files);
+  const std::vector<PvdEntry> lines = read_pvd(dir_ / "case.pvd");
+  ASSERT_EQ(lines.size(), 3U);
+  EXPECT_EQ(lines[0].name, "elements");
+  EXPECT_EQ(lines[1].name, "contacts & <more>");
+  EXPECT_EQ(lines[2].name, "") << "part 2 has no name";
+  EXPECT_EQ(read_text(dir_ / "case.pvd").find("name=\"\""), std::string::npos);
+  // A restored series (a restart) is named as well.
+  series.restore({{0.0, 1, "b.vtu"}});
+  EXPECT_EQ(read_pvd(dir_ / "case.pvd").at(0).name, "contacts & <more>");
 }
 
 TEST_F(VtkWriterTest, PvdInAMissingDirectoryIsAnInputErrorAndListsNothing) {
@@ -589,6 +654,8 @@ TEST_F(VtkWriterTest, CoverMeshHasOneCellPerAtomWithItsElementsData) {
   expect_array(cells, "element", 1, {0, 1, 1, 2}, true);
   expect_array(cells, "triangle", 1, {0, 1, 1, 2}, true);
   expect_array(cells, "covers", 3, {0, 1, 2, 3, 4, 5, 3, 4, 5, 6, 7, 8}, true);
+  EXPECT_EQ(component_names(cells, "covers"),
+            (std::vector<std::string>{"node0", "node1", "node2"}));
   expect_array(cells, "material", 1, {0, 1, 1, 0}, true);
   expect_array(cells, "block", 1, {0, 1, 1, 2}, true);
   expect_array(cells, "n_atoms", 1, {1, 2, 2, 1}, true);
