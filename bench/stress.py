@@ -84,7 +84,7 @@ from nmm_run import run_nmm
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from vtk_xml import read_arrays  # noqa: E402  (scripts/vtk_xml.py: nmm's VTK files, LZ4)
+from vtk_xml import read_arrays  # noqa: E402  (scripts/vtk_xml.py: nmm's VTK files, base64 + LZ4)
 
 
 def all_finite(rows):

@@ -8,8 +8,9 @@ packages=(g++ cmake make ninja-build
           libgtest-dev libgmock-dev libbenchmark-dev)
 if [ "${1:-}" = "--tests" ]; then
   # lld: CMakeLists.txt links with it when present (the sanitizer build's links 3x faster);
-  # it needs the same libllvm14 as clang-format-14.
-  packages+=(clang-format-14 lld)
+  # it needs the same libllvm14 as clang-format-14. python3: the check that every output
+  # file is well-formed XML (tests/tools/check_output_xml.py; standard library only).
+  packages+=(clang-format-14 lld python3)
 fi
 missing=()
 for p in "${packages[@]}"; do

@@ -3,11 +3,16 @@
 the Python standard library, for scripts on machines without VTK's Python module
 (examples/17_hertz_contact/hertz_pressure.py, bench/stress.py).
 
-nmm writes appended raw data compressed by VTK's LZ4 compressor: per array a header of
-UInt32 or UInt64 words (number of blocks, block size, size of the last block, then the
-compressed size of each block) and the LZ4 blocks, decoded here.
+nmm writes appended data compressed by VTK's LZ4 compressor: per array a header of UInt32 or
+UInt64 words (number of blocks, block size, size of the last block, then the compressed size
+of each block) and the LZ4 blocks, decoded here. Since 2026-12-01 the appended data is
+base64-encoded (well-formed XML, docs/output.md): each array's header is encoded on its own,
+then its compressed blocks together, each ending with its own padding, and an array's offset
+counts characters of the text after the "_" that starts the data. Files written before then
+hold the same bytes unencoded (encoding="raw"); both are read.
 """
 
+import base64
 import re
 import struct
 
@@ -57,19 +62,33 @@ def lz4_block(source, size):
 
 def read_arrays(path, names=None):
     """The data arrays of @p path by name, each a flat list of numbers (the components of a
-    tuple one after the other); the point coordinates as "Points". Only @p names when given
+    tuple one after the other; a String array a list of str); the point coordinates as
+    "Points". Only @p names when given
     (a ValueError names the ones missing). A name the file repeats (a .vtp's connectivity of
     each cell kind) keeps its first array."""
     with open(path, "rb") as f:
         data = f.read()
-    head, _, raw = data.partition(b'<AppendedData encoding="raw">')
-    raw = raw[raw.index(b"_") + 1:]
-    text = head.decode("latin-1")
+    match = re.search(rb'<AppendedData encoding="(raw|base64)">\s*_', data)
+    if match is None:
+        raise ValueError("%s has no appended data (nmm writes every array there)" % path)
+    encoded = match.group(1) == b"base64"
+    appended = data[match.end():]
+    text = data[:match.start()].decode("latin-1")
+    if 'compressor="vtkLZ4DataCompressor"' not in text:
+        raise ValueError("%s is not LZ4-compressed (nmm's files are)" % path)
     header = "Q" if 'header_type="UInt64"' in text else "I"
     width = struct.calcsize(header)
+
+    def take(start, size):
+        """@p size bytes of data at @p start, and where the data after them starts: in base64
+        a stream of its own, 4 characters for every 3 bytes or part of them."""
+        if not encoded:
+            return appended[start:start + size], start + size
+        length = 4 * ((size + 2) // 3)
+        return base64.b64decode(appended[start:start + length])[:size], start + length
     arrays = {}
     section = None
-    for element in re.finditer(_SECTION + r"|<DataArray ([^>]*)>", text):
+    for element in re.finditer(_SECTION + r"|<(?:Data)?Array ([^>]*)>", text):
         if element.group(1):
             section = element.group(1)
             continue
@@ -78,15 +97,21 @@ def read_arrays(path, names=None):
         if name in arrays or (names is not None and name not in names):
             continue
         offset = int(attributes["offset"])
-        blocks, block_size, last_size = struct.unpack_from("<3" + header, raw, offset)
-        sizes = struct.unpack_from("<%d%s" % (blocks, header), raw, offset + 3 * width)
-        position = offset + (3 + blocks) * width
+        # The header's first three words give the number of blocks, hence its length.
+        blocks = struct.unpack_from("<" + header, take(offset, width)[0])[0]
+        words, position = take(offset, (3 + blocks) * width)
+        _, block_size, last_size, *sizes = struct.unpack("<%d%s" % (3 + blocks, header), words)
+        compressed, _ = take(position, sum(sizes))
         chunks = []
-        for k, compressed in enumerate(sizes):
+        start = 0
+        for k, length in enumerate(sizes):
             size = last_size if k == blocks - 1 and last_size else block_size
-            chunks.append(lz4_block(raw[position:position + compressed], size))
-            position += compressed
+            chunks.append(lz4_block(compressed[start:start + length], size))
+            start += length
         blob = b"".join(chunks)
+        if attributes["type"] == "String":  # each value ends with a NUL byte
+            arrays[name] = [v.decode("utf-8") for v in blob.split(b"\0")[:-1]]
+            continue
         code = _TYPES[attributes["type"]]
         arrays[name] = list(struct.unpack("<%d%s" % (len(blob) // struct.calcsize(code), code),
                                           blob))

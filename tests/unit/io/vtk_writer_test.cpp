@@ -23,6 +23,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkUnstructuredGrid.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -80,6 +81,15 @@ void expect_array(vtkFieldData* data,
                                   static_cast<int>(k % static_cast<std::size_t>(n_components))),
               values[k])
         << name << " value " << k;
+}
+
+/// True when every byte of @p text is printable ASCII or XML whitespace: no raw binary data
+/// (which makes the file ill-formed XML; issue 43).
+bool is_plain_text(const std::string& text) {
+  return std::all_of(text.begin(), text.end(), [](char c) {
+    const auto u = static_cast<unsigned char>(c);
+    return (u >= 0x20 && u < 0x7f) || c == '\n' || c == '\t' || c == '\r';
+  });
 }
 
 std::vector<Point2> cell_points(vtkDataSet* data, vtkIdType cell) {
@@ -236,12 +246,15 @@ TEST_F(VtkWriterTest, VtuRoundTripsPointsCellsAndEveryKindOfArray) {
   expect_array(grid->GetCellData(), "flags", 4, {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12}, true);
   expect_array(grid->GetFieldData(), "TimeValue", 1, {0.125}, false);
 
-  // Binary, compressed, appended raw data, as promised.
+  // Compressed binary data, appended in base64, as promised: the whole file is text, so
+  // well-formed XML (raw appended bytes are not; issue 43).
   const std::string text = read_text(file);
   EXPECT_NE(text.find("compressor=\"vtkLZ4DataCompressor\""), std::string::npos);
   EXPECT_NE(text.find("format=\"appended\""), std::string::npos);
-  EXPECT_NE(text.find("encoding=\"raw\""), std::string::npos);
+  EXPECT_NE(text.find("<AppendedData encoding=\"base64\">"), std::string::npos);
+  EXPECT_EQ(text.find("encoding=\"raw\""), std::string::npos);
   EXPECT_EQ(text.find("format=\"ascii\""), std::string::npos);
+  EXPECT_TRUE(is_plain_text(text));
   EXPECT_TRUE(temporary_files().empty());
 }
 
@@ -268,6 +281,7 @@ TEST_F(VtkWriterTest, ComponentNamesAndTextArraysReadBack) {
   EXPECT_EQ(text_values(grid->GetCellData(), "kind_name"), std::vector<std::string>{"VEM block"});
   EXPECT_EQ(text_values(grid->GetFieldData(), "legend"),
             (std::vector<std::string>{"0 open", "1 sliding", "2 locked", ""}));
+  EXPECT_TRUE(is_plain_text(read_text(dir_ / "named.vtu")));
 }
 
 TEST_F(VtkWriterTest, WrongArraySizeOrIndexIsAProgrammerError) {
