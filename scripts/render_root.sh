@@ -29,11 +29,10 @@
 # a lock on the directory that holds the root.
 # Environment: NMM_RENDER_ROOT (the root's directory), DEBIAN_MIRROR.
 #
-# Debian 12's security updates of libexpat (>= 2.5.0-1+deb12u2, CVE-2023-52425) turned on
-# expat's "reparse deferral", which breaks the VTK 9.1/9.2 XML readers (ParaView 5.11) on
-# files with raw appended data, like nmm's: "Error parsing XML ... not well-formed (invalid
-# token)" (VTK issue 19258, fixed in VTK 9.3.1). The fix VTK adopted, turning deferral off
-# per parser, is preloaded into pvbatch here: a 10-line library built with the host's cc.
+# ParaView is Debian's own, unchanged: nmm's files are well-formed XML (base64 appended
+# data), which its VTK 9.1 readers parse with Debian 12's current libexpat. (Files with raw
+# appended data, as nmm wrote before 2026-12-01, fail there since libexpat's security update
+# for CVE-2023-52425: "Error parsing XML ... not well-formed (invalid token)".)
 set -euo pipefail
 
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -42,7 +41,6 @@ root=$(realpath -m -- "$root")
 mirror=${DEBIAN_MIRROR:-http://deb.debian.org/debian}
 # pvbatch, an X server for it, and Mesa's software OpenGL (llvmpipe) that draws into it.
 packages=(paraview python3-paraview xvfb xauth libgl1-mesa-dri fonts-dejavu-core)
-shim=/usr/local/lib/nmm-expat-no-deferral.so  # inside the root
 
 die() { echo "render_root.sh: $*" >&2; exit 1; }
 note() { echo "render_root.sh: $*" >&2; }
@@ -94,28 +92,6 @@ enter() {  # enter ROOT: mount /proc, /sys, /dev and a fresh /tmp in ROOT (for c
   mounted+=("$1/tmp")
 }
 
-build_shim() {  # build_shim ROOT: the expat fix described above
-  command -v cc > /dev/null || die "no C compiler (cc) on the host to build $shim"
-  cc -shared -fPIC -O2 -o "$1$shim" -x c - -ldl << 'EOF' || die "cannot build $1$shim"
-#define _GNU_SOURCE
-#include <dlfcn.h>
-typedef void *XML_Parser;
-static void *expat(const char *name) {
-  void *function = dlsym(RTLD_NEXT, name), *library;
-  if (!function && (library = dlopen("libexpat.so.1", RTLD_NOW))) function = dlsym(library, name);
-  return function;
-}
-XML_Parser XML_ParserCreate(const char *encoding) {
-  XML_Parser (*create)(const char *) = (XML_Parser(*)(const char *))expat("XML_ParserCreate");
-  unsigned char (*deferral)(XML_Parser, unsigned char) =
-      (unsigned char (*)(XML_Parser, unsigned char))expat("XML_SetReparseDeferralEnabled");
-  XML_Parser parser = create ? create(encoding) : 0;
-  if (parser && deferral) deferral(parser, 0);
-  return parser;
-}
-EOF
-}
-
 mounts_under() { awk -v d="$1" '$5 == d || index($5, d "/") == 1' /proc/self/mountinfo; }
 
 setup() {
@@ -152,7 +128,6 @@ EOF
         apt-get install -y --no-install-recommends "${packages[@]}" &&
       chroot "$stage" apt-get clean
   } > "$root.apt.log" 2>&1 || die "installing ParaView in the root failed; see $root.apt.log"
-  build_shim "$stage"
   cleanup
   mv "$stage" "$root"
   note "root ready in $((SECONDS - start)) s, $(du -sh --one-file-system "$root" | cut -f1)"
@@ -195,7 +170,6 @@ free_display() {  # an X display number that no X server uses, on the host or in
 [[ -e $root ]] || setup
 [[ -x $root/usr/bin/pvbatch ]] ||
   die "$root is not a root made by this script (no pvbatch); remove it"
-[[ -f $root$shim ]] || build_shim "$root"
 [[ ${1:-} == --setup ]] && exit 0
 
 run_dir=$root/mnt/nmm-render.$$
@@ -217,11 +191,11 @@ for dir in "${!dirs[@]}"; do host_paths+=(-e "s#${dirs[$dir]}/#$dir/#g"); done
 enter "$root"
 # pvbatch under a virtual X server. -noreset: without it Xvfb resets when pvbatch closes its
 # first connection (the OpenGL check), and pvbatch's next one can fail: "bad X server
-# connection ... Aborting". The expat fix is preloaded into pvbatch only.
+# connection ... Aborting".
 status=0
 chroot "$root" env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 \
   xvfb-run -n "$(free_display)" -e /dev/stderr -s "-screen 0 1920x1200x24 -noreset" \
-  env LD_PRELOAD="$shim" pvbatch /repo/scripts/render.py "${args[@]}" 2>&1 |
+  pvbatch /repo/scripts/render.py "${args[@]}" 2>&1 |
   sed "${host_paths[@]}" || status=$?
 if [[ -n ${SUDO_UID:-} ]]; then  # give the pictures to whoever ran sudo
   for arg in "$@"; do
