@@ -395,19 +395,21 @@ vtkNew<vtkCellArray> to_vtk_cells(const std::vector<std::vector<int>>& loops) {
   return cells;
 }
 
-/// LZ4-compressed binary data, appended and base64-encoded. LZ4 against ZLib's default level
-/// on a 1e5-element step file: 3x faster to write, 1.4x larger (docs/benchmarks.md "Time
-/// step"); ParaView reads both (LZ4 since 5.5). Base64, not raw bytes: raw appended data makes
-/// the file ill-formed XML, which the XML readers of VTK before 9.3.1 (ParaView 5.11) fail to
-/// parse with an expat that defers reparsing (2.6, and Debian 12's 2.5.0 since its security
-/// update for CVE-2023-52425). It costs a third more bytes and about 1.7 times the write time
-/// (docs/benchmarks.md, "Output files").
+/// LZ4-compressed binary data, base64-encoded inside each DataArray element (VTK's "binary"
+/// mode). LZ4 against ZLib's default level on a 1e5-element step file: 3x faster to write,
+/// 1.4x larger (docs/benchmarks.md "Time step"); ParaView reads both (LZ4 since 5.5). Inline,
+/// not appended: the XML readers of VTK before 9.3.1 (ParaView 5.11) fail on any AppendedData
+/// element with an expat that defers reparsing (2.6, and Debian 12's 2.5.0 since its update
+/// for CVE-2023-52425): "not well-formed (invalid token)" for raw bytes, which are not XML,
+/// and for base64 ones too (their parser cuts the document at AppendedData and relies on
+/// expat's callbacks coming at once; checked with Debian 12's ParaView 5.11 on 2026-12-01).
+/// Inline base64 costs a third more bytes and more write time (docs/benchmarks.md, "Output
+/// files").
 template <class Writer> bool write_xml(vtkDataObject* data, const fs::path& tmp) {
   vtkNew<Writer> writer;
   writer->SetInputData(data);
   writer->SetFileName(tmp.c_str());
-  writer->SetDataModeToAppended();
-  writer->EncodeAppendedDataOn();
+  writer->SetDataModeToBinary();
   writer->SetCompressorTypeToLZ4();
   writer->SetHeaderTypeToUInt64(); // blocks beyond 4 GiB stay readable
   return writer->Write() == 1 && writer->GetErrorCode() == 0;

@@ -111,10 +111,10 @@ struct PolylineData {
   DataArrays field_data;
 };
 
-/// Writes @p data as a VTK XML unstructured grid (.vtu): LZ4-compressed binary data, appended
-/// and base64-encoded, so that the whole file is well-formed XML (raw appended bytes are not,
-/// and ParaView 5.11 with an expat that defers reparsing, such as Debian 12's since its fix of
-/// CVE-2023-52425, refuses them).
+/// Writes @p data as a VTK XML unstructured grid (.vtu): LZ4-compressed binary data, base64-
+/// encoded inside each DataArray element, so that the whole file is well-formed XML without
+/// an AppendedData element (ParaView 5.11 with an expat that defers reparsing, such as Debian
+/// 12's since its fix of CVE-2023-52425, refuses appended data, raw or base64).
 /// A cell of 3 points without holes becomes a VTK_TRIANGLE, every other cell one VTK_POLYGON.
 /// VTK polygons cannot have holes, so a cell with holes is written as one keyhole loop (see
 /// keyhole_loop()). The start vertex of a hole-free polygon is rotated, where possible, to a

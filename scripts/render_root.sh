@@ -29,10 +29,11 @@
 # a lock on the directory that holds the root.
 # Environment: NMM_RENDER_ROOT (the root's directory), DEBIAN_MIRROR.
 #
-# ParaView is Debian's own, unchanged: nmm's files are well-formed XML (base64 appended
-# data), which its VTK 9.1 readers parse with Debian 12's current libexpat. (Files with raw
-# appended data, as nmm wrote before 2026-12-01, fail there since libexpat's security update
-# for CVE-2023-52425: "Error parsing XML ... not well-formed (invalid token)".)
+# ParaView is Debian's own, unchanged: nmm's files are well-formed XML with their data inline
+# (base64 in each DataArray), which its VTK 9.1 readers parse with Debian 12's current
+# libexpat. (Files with an AppendedData element, raw as nmm wrote them before 2026-12-01 or
+# base64, fail there since libexpat's security update for CVE-2023-52425: "Error parsing XML
+# ... not well-formed (invalid token)".)
 set -euo pipefail
 
 repo=$(cd "$(dirname "$0")/.." && pwd)

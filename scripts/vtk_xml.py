@@ -3,13 +3,15 @@
 the Python standard library, for scripts on machines without VTK's Python module
 (examples/17_hertz_contact/hertz_pressure.py, bench/stress.py).
 
-nmm writes appended data compressed by VTK's LZ4 compressor: per array a header of UInt32 or
+nmm writes binary data compressed by VTK's LZ4 compressor: per array a header of UInt32 or
 UInt64 words (number of blocks, block size, size of the last block, then the compressed size
-of each block) and the LZ4 blocks, decoded here. Since 2026-12-01 the appended data is
-base64-encoded (well-formed XML, docs/output.md): each array's header is encoded on its own,
-then its compressed blocks together, each ending with its own padding, and an array's offset
-counts characters of the text after the "_" that starts the data. Files written before then
-hold the same bytes unencoded (encoding="raw"); both are read.
+of each block) and the LZ4 blocks, decoded here. Since 2026-12-01 each array's data is
+base64 text inside its DataArray element (format="binary": well-formed XML that ParaView
+5.11 reads with Debian 12's expat, docs/output.md): the header is encoded on its own, then
+the compressed blocks together, each ending with its own padding. Files written before then
+hold the same bytes raw in an AppendedData element (format="appended", encoding="raw", an
+array's offset counting bytes after the "_" that starts the data); those are read too, and
+base64 appended data as well.
 """
 
 import base64
@@ -18,7 +20,7 @@ import struct
 
 _TYPES = {"Float64": "d", "Float32": "f", "Int64": "q", "Int32": "i", "Int8": "b",
           "UInt64": "Q", "UInt32": "I", "UInt8": "B"}
-_SECTION = r"<(Points|PointData|CellData|Cells|Verts|Lines|Polys|Strips|FieldData)>"
+_SECTION = r"<(Points|PointData|CellData|Cells|Verts|Lines|Polys|Strips|FieldData)[\s>]"
 
 
 def lz4_block(source, size):
@@ -63,45 +65,52 @@ def lz4_block(source, size):
 def read_arrays(path, names=None):
     """The data arrays of @p path by name, each a flat list of numbers (the components of a
     tuple one after the other; a String array a list of str); the point coordinates as
-    "Points". Only @p names when given
-    (a ValueError names the ones missing). A name the file repeats (a .vtp's connectivity of
-    each cell kind) keeps its first array."""
+    "Points". Only @p names when given (a ValueError names the ones missing). A name the file
+    repeats (a .vtp's connectivity of each cell kind) keeps its first array."""
     with open(path, "rb") as f:
         data = f.read()
     match = re.search(rb'<AppendedData encoding="(raw|base64)">\s*_', data)
-    if match is None:
-        raise ValueError("%s has no appended data (nmm writes every array there)" % path)
-    encoded = match.group(1) == b"base64"
-    appended = data[match.end():]
-    text = data[:match.start()].decode("latin-1")
+    appended = data[match.end():] if match else b""
+    appended_encoded = bool(match) and match.group(1) == b"base64"
+    text = (data[:match.start()] if match else data).decode("latin-1")
     if 'compressor="vtkLZ4DataCompressor"' not in text:
         raise ValueError("%s is not LZ4-compressed (nmm's files are)" % path)
     header = "Q" if 'header_type="UInt64"' in text else "I"
     width = struct.calcsize(header)
 
-    def take(start, size):
-        """@p size bytes of data at @p start, and where the data after them starts: in base64
-        a stream of its own, 4 characters for every 3 bytes or part of them."""
+    def take(source, encoded, start, size):
+        """@p size bytes of data at @p start of @p source, and where the data after them
+        starts: in base64 a stream of its own, 4 characters for every 3 bytes or part."""
         if not encoded:
-            return appended[start:start + size], start + size
+            return source[start:start + size], start + size
         length = 4 * ((size + 2) // 3)
-        return base64.b64decode(appended[start:start + length])[:size], start + length
+        return base64.b64decode(source[start:start + length])[:size], start + length
+
     arrays = {}
     section = None
-    for element in re.finditer(_SECTION + r"|<(?:Data)?Array ([^>]*)>", text):
+    for element in re.finditer(_SECTION + r"|<(Data)?Array ([^>]*?)(/?)>", text):
         if element.group(1):
             section = element.group(1)
             continue
-        attributes = dict(re.findall(r'(\w+)="([^"]*)"', element.group(2)))
+        attributes = dict(re.findall(r'(\w+)="([^"]*)"', element.group(3)))
         name = "Points" if section == "Points" else attributes.get("Name")
         if name in arrays or (names is not None and name not in names):
             continue
-        offset = int(attributes["offset"])
+        if attributes.get("format") == "appended":
+            source, encoded, offset = appended, appended_encoded, int(attributes["offset"])
+        elif attributes.get("format") == "binary":  # base64 text inside the element
+            end = text.index("</" + ("Data" if element.group(2) else "") + "Array>",
+                             element.end())
+            source = "".join(text[element.end():end].split()).encode("ascii")
+            encoded, offset = True, 0
+        else:
+            raise ValueError("%s: array %s is %s, not nmm's binary data" %
+                             (path, name, attributes.get("format")))
         # The header's first three words give the number of blocks, hence its length.
-        blocks = struct.unpack_from("<" + header, take(offset, width)[0])[0]
-        words, position = take(offset, (3 + blocks) * width)
+        blocks = struct.unpack_from("<" + header, take(source, encoded, offset, width)[0])[0]
+        words, position = take(source, encoded, offset, (3 + blocks) * width)
         _, block_size, last_size, *sizes = struct.unpack("<%d%s" % (3 + blocks, header), words)
-        compressed, _ = take(position, sum(sizes))
+        compressed, _ = take(source, encoded, position, sum(sizes))
         chunks = []
         start = 0
         for k, length in enumerate(sizes):
