@@ -11,7 +11,7 @@ for b in "$root"/build/release/bench/bench_*; do
   case "$name" in
     bench_simplex_integration) "$b" --benchmark_min_time=0.5 | tee "$out/$name.txt" ;;  # Google Benchmark
     bench_cover_mesher) { "$b" robustness 1000 && "$b" speed; } | tee "$out/$name.txt" ;;
-    bench_vtk_encoding)  # base64 against raw appended data, on the files of two examples
+    bench_vtk_encoding)  # inline base64 against raw appended data, on two examples' files
       vtk="$root/build/bench-vtk"
       rm -rf "$vtk"
       "$root/build/release/nmm" run "$root/examples/05_plate_with_hole/case.toml" -o "$vtk/05" --quiet > /dev/null

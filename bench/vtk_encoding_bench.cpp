@@ -1,13 +1,14 @@
 // SPDX-License-Identifier: MIT
-// bench/vtk_encoding_bench.cpp — what base64-encoded appended data costs against raw bytes in
-// nmm's VTK files (issue 43: raw appended data is not XML, and ParaView 5.11 with Debian 12's
-// expat refuses it), in size and in write and read time, measured in the same run.
+// bench/vtk_encoding_bench.cpp — what base64 data inside each DataArray (VTK's "binary" mode,
+// nmm's since 2026-12-01) costs against the raw appended bytes nmm wrote before (issue 43:
+// ParaView 5.11 with Debian 12's expat refuses appended data), in size and in write and read
+// time, measured in the same run.
 //
 //   bench_vtk_encoding [--repeats R] FILE.vtu|FILE.vtp...
-//       each file (nmm's output, either encoding) is read once, then written R times (default
-//       7) with the settings of io/vtk_writer.cpp (appended, LZ4, UInt64 headers) with raw
-//       bytes and with base64, the two alternating so that both see the same load, and each
-//       written file read back R times by VTK's XML reader; the best time of each.
+//       each file (nmm's output, any format) is read once, then written R times (default 7)
+//       with io/vtk_writer.cpp's settings (LZ4, UInt64 headers) as raw appended data and as
+//       inline base64, the two alternating so that both see the same load, and each written
+//       file read back by VTK's XML reader; the best time of each.
 //       bench/run_benchmarks.sh runs it on the output of examples/05 and examples/09.
 #include "timing.hpp"
 #include <unistd.h>
@@ -51,13 +52,18 @@ vtkSmartPointer<vtkDataObject> read(const fs::path& file) {
   return reader->GetOutput();
 }
 
-/// io/vtk_writer.cpp's write_xml() with the appended data raw or base64-encoded.
+/// io/vtk_writer.cpp's write_xml() (inline base64), or its settings before 2026-12-01 (raw
+/// appended data).
 template <class Writer> void write(vtkDataObject* data, const fs::path& file, bool base64) {
   vtkNew<Writer> writer;
   writer->SetInputData(data);
   writer->SetFileName(file.c_str());
-  writer->SetDataModeToAppended();
-  writer->SetEncodeAppendedData(base64 ? 1 : 0);
+  if (base64) {
+    writer->SetDataModeToBinary();
+  } else {
+    writer->SetDataModeToAppended();
+    writer->EncodeAppendedDataOff();
+  }
   writer->SetCompressorTypeToLZ4();
   writer->SetHeaderTypeToUInt64();
   if (writer->Write() != 1) {
