@@ -337,7 +337,9 @@ def main():
         point_display = pv.Show(lifted, view)
         point_display.Representation = "Points"
         point_display.PointSize = args.point_size
-        point_display.RenderPointsAsSpheres = 1
+        # Flat squares, not spheres: in the Debian 12 root of 2026-12-01 (Mesa llvmpipe)
+        # ParaView 5.11's sphere impostors are drawn behind the surface they lie on.
+        point_display.RenderPointsAsSpheres = 0
         point_display.Ambient, point_display.Diffuse = 1.0, 0.0  # flat: the legend's colours
         by_array = points.PointData.GetArray(args.points_color) is not None
         if args.points_color.startswith("#") or not by_array:
