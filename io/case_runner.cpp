@@ -633,6 +633,24 @@ void create_output_dir(const fs::path& dir) {
 
 namespace {
 
+/// What the chatter rule held beyond Coulomb's law, as a warning with what to do: a static
+/// answer with contacts locked beyond their friction limit can call standing what slides.
+std::vector<std::string> friction_warnings(const StepperCounters& c) {
+  std::vector<std::string> warnings;
+  if (c.locks_beyond_friction > 0) {
+    warnings.push_back(
+        "contacts at the limit of friction were held locked beyond it at the end of " +
+        std::to_string(c.locks_beyond_friction) +
+        (c.locks_beyond_friction == 1 ? " step" : " steps") + " (up to " +
+        number_text(c.max_lock_excess, 3) +
+        " times the limit; the chatter rule): a body reported standing there may slide. "
+        "history.csv's lock_excess names the steps and contacts_*.vtp the contacts (state 2 "
+        "with |shear_force| above tan(phi) normal_force); a smaller max_step_displacement, or "
+        "a dynamic analysis, lets them slide");
+  }
+  return warnings;
+}
+
 /// Removes the step, contact and boundary files of an earlier run in @p dir after step @p after
 /// (all with -1), and its checkpoint unless restarting (@p after >= 0).
 void remove_old_output(const fs::path& dir, long after) {
@@ -709,6 +727,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     std::vector<std::string> warnings = analysis.warnings();
     warnings.insert(warnings.end(), restart_warnings.begin(), restart_warnings.end());
     warnings.insert(warnings.end(), stepper.warnings().begin(), stepper.warnings().end());
+    for (std::string& w : friction_warnings(stepper.counters()))
+      warnings.push_back(std::move(w));
     return warnings;
   };
   const double wall_before = restored ? restored->wall_seconds : 0.0;

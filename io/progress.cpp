@@ -101,13 +101,6 @@ void write_closing_summary(std::ostream& out, const RunResult& result, long step
   if (result.max_penetration > 0.0)
     out << ", max contact penetration " << number_text(result.max_penetration, 3) << " m";
   out << '\n';
-  if (result.locks_beyond_friction > 0) {
-    // Not a warning (the chatter rule is the method's, docs/formulation.md), but never silent.
-    out << "  friction: " << result.locks_beyond_friction
-        << (result.locks_beyond_friction == 1 ? " step" : " steps")
-        << " ended with a contact held locked beyond its friction limit (up to "
-        << number_text(result.max_lock_excess, 3) << " times it; the chatter rule)\n";
-  }
   if (result.slides_against_motion > 0) {
     out << "  friction: " << result.slides_against_motion
         << (result.slides_against_motion == 1 ? " step" : " steps")

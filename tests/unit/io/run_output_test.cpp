@@ -372,9 +372,10 @@ TEST(Progress, ClosingSummarySaysStatusStepsWarningsAndWhereTheOutputsAre) {
 }
 
 TEST(Progress, ClosingSummarySaysWhatTheChatterRuleHeldAtTheLimitOfFriction) {
-  // Never silent (docs/formulation.md, "Chatter rule"): locks held beyond friction in static
-  // steps, and the friction of slides held at the limit along motions that turned back in
-  // dynamic ones, with its share of the work of the loads.
+  // Never silent (docs/formulation.md, "Chatter rule"): the friction of slides held at the
+  // limit along motions that turned back in dynamic steps, with its share of the work of the
+  // loads. Locks held beyond friction in static steps are a warning (io/case_runner.cpp), so
+  // no info line for them.
   RunResult result;
   result.steps = 500;
   result.locks_beyond_friction = 8;
@@ -385,12 +386,11 @@ TEST(Progress, ClosingSummarySaysWhatTheChatterRuleHeldAtTheLimitOfFriction) {
   std::ostringstream out;
   write_closing_summary(out, result, 500);
   const std::string text = out.str();
-  for (const char* part : {"friction: 8 steps ended with a contact held locked beyond its "
-                           "friction limit (up to 1.35 times it",
-                           "friction: 91 steps ended with a contact held sliding at its friction "
-                           "limit against a motion that turned back (2e+04 J of friction work "
-                           "along it, 3.9% of the work of the loads"})
-    EXPECT_NE(text.find(part), std::string::npos) << part << " in\n" << text;
+  const char* slide = "friction: 91 steps ended with a contact held sliding at its friction "
+                      "limit against a motion that turned back (2e+04 J of friction work "
+                      "along it, 3.9% of the work of the loads";
+  EXPECT_NE(text.find(slide), std::string::npos) << text;
+  EXPECT_EQ(text.find("held locked"), std::string::npos) << text;
 }
 
 TEST(Progress, ClosingSummarySaysWhatConjugateGradientsDidAndWhenCholmodIsFaster) {
