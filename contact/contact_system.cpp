@@ -451,7 +451,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       p.slave = boundary_.position[at(v)];
       // Half of the vertex's two edges (Shi), or none at the end of an edge-to-edge contact
       // that represents that face already (docs/formulation.md, "Joint strength").
-      p.length = c.ends_edge_pair
+      p.length = c.end_face >= 0
                      ? 0.0
                      : 0.5 * ((boundary_.position[at(boundary_.next[at(v)])] - p.slave).norm() +
                               (boundary_.position[at(boundary_.previous[at(v)])] - p.slave).norm());
@@ -459,10 +459,10 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       p.strength =
           weaker(weaker(edge_strength_[at(v)], edge_strength_[at(boundary_.previous[at(v)])]),
                  edge_strength_[at(p.master)]);
-      // A corner at the end of a bonded face belongs to that face's interface (it holds no
-      // length of its own, so no strength either: its spring yields with friction alone).
-      p.bonded = c.ends_edge_pair
-                     ? edge_bonded_[at(v)] != 0 || edge_bonded_[at(boundary_.previous[at(v)])] != 0
+      // A corner at the end of a bonded face belongs to that face's bond (it holds no length
+      // of its own, so no strength either: its spring yields with friction alone).
+      p.bonded = c.end_face >= 0
+                     ? edge_bonded_[at(c.end_face)] != 0 && edge_bonded_[at(c.end_beyond)] != 0
                      : edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
       g.count = 1;
       points_.push_back(p);
@@ -476,7 +476,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       g.t_next = (d - ma).dot(tangent);
       const double t_lo = std::max(0.0, std::min(g.t_first, g.t_next));
       const double t_hi = std::min(length, std::max(g.t_first, g.t_next));
-      if (t_hi - t_lo <= 1e-6 * length) // as in the detection: an end that only touches
+      if (t_hi - t_lo <= touching_end * length) // as in the detection: an end that only touches
         continue;
       const double u1 = (t_lo - g.t_first) / (g.t_next - g.t_first);
       const double u2 = (t_hi - g.t_first) / (g.t_next - g.t_first);
@@ -965,9 +965,10 @@ bool ContactSystem::contribution(const Model& model,
     return true; // its friction is in the solve: friction_coupling()
   } else if (const double friction = friction_force(p); friction != 0.0) {
     // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
-    // from the normal force of the last iteration so that the matrix stays symmetric.
+    // from the normal force of the last iteration so that the matrix stays symmetric. What
+    // follows the normal force is friction; a bond's cohesion alone is a constant load.
     load -= static_cast<double>(p.slide_sign) * friction * hs;
-    return true;
+    return friction != bond_cohesion(p);
   }
   return false;
 }
@@ -1133,8 +1134,13 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     // (a jointed rock mass dropped from rest, 1,003 blocks: 25 refactorisations a step, now
     // 1.4; docs/formulation.md, "Rounding").
     const double noise = stiffness * rounding_;
+    // An open bond closes again where its springs would pull within its tensile strength
+    // (with no strength: where it penetrates, as any contact).
+    const bool closes = partial       ? pressed.found && deepest > rounding_
+                        : lead.bonded ? normal > -tension + noise
+                                      : gap < -rounding_;
     if (before == ContactMode::open) {
-      if (partial ? pressed.found && deepest > rounding_ : gap < -rounding_) {
+      if (closes) {
         // Shi 8.2: open -> slide when the shear the lock would take, the step's tangential
         // motion against a spring of the same stiffness, beats friction on the normal force
         // the penetration gives; open -> lock otherwise.
@@ -1183,7 +1189,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       // (ModeUpdate::slide_feed).
       if (limit > 0.0 && !hold_shear_ && dynamic_ && lead.slips >= options_.chatter_limit) {
         ++counters_.chatter_holds;
-        held_against_.emplace_back(limit - cohesion, std::abs(motion));
+        held_against_.emplace_back(limit, std::abs(motion));
       } else if (limit > 0.0 && !hold_shear_) {
         after = ContactMode::lock;
       } else {
@@ -1253,14 +1259,19 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
     }
     if (after == ContactMode::slide) {
       const double work = friction * std::abs(motion);
-      friction_total += work * std::abs(now) + (lead.bonded ? cohesion * std::abs(motion) : 0.0);
+      // Friction acts on the compressive part of the normal force (a bond in tension slides
+      // on its cohesion alone), and the cohesion a bond slides with is friction work too.
+      friction_total += work * std::max(0.0, now) + cohesion * std::abs(motion);
       // A change of the normal force within that of the springs stretched by the rounding is
       // none (the friction of a contact at a tie, on a normal force of rounding, would be
       // chased for ever: its relative change never settles). Coupled friction acted with the
       // normal force of this very solve: the springs' resultant, which differs from what the
       // pair bears only by springs that pull within tension_tolerance (or that the next
       // lift-off move takes away), so it has no change to chase.
-      const double change = coupled ? 0.0 : before == ContactMode::slide ? now - used : now;
+      const double change = coupled ? 0.0
+                            : before == ContactMode::slide
+                                ? std::max(0.0, now) - std::max(0.0, used)
+                                : std::max(0.0, now);
       if (std::abs(change) > noise)
         friction_change += work * std::abs(change);
     }
@@ -1450,7 +1461,17 @@ void ContactSystem::break_yielded_interfaces(const Model& model, const Eigen::Ve
     if (!lead.bonded)
       continue;
     if (lead.mode == ContactMode::open) {
-      unbond(g, g.key); // opened by tension beyond its strength: this part breaks
+      // Open at the end of the step: this part breaks where its springs would pull beyond
+      // its tensile strength (not where the chatter rule holds it open within it).
+      double pull = 0.0;
+      double strength = 0.0;
+      for (int q = 0; q < g.count; ++q) {
+        const ContactPoint& p = points_[at(g.first + q)];
+        pull += p.stiffness * p.gap;
+        strength += p.strength.tensile_strength * p.length;
+      }
+      if (pull > strength)
+        unbond(g, g.key);
       continue;
     }
     const std::uint64_t key = interface_key(lead.slave_edge, lead.master);

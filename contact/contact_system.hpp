@@ -135,8 +135,9 @@ struct ContactPoint {
 }
 
 /// The friction force of a sliding point as its spring pair's load (Shi eq. 3.27-3.33):
-/// normal force of the last iteration times tan(friction angle), N; 0 when the point does not
-/// slide, is not pressed, or is frictionless (no friction term is assembled then).
+/// normal force of the last iteration times tan(friction angle), plus bond_cohesion() of a
+/// bonded point, N; 0 when the point does not slide, or is neither pressed with friction nor
+/// bonded with cohesion (no friction term is assembled then).
 [[nodiscard]] inline double friction_force(const ContactPoint& p) {
   if (p.mode != ContactMode::slide)
     return 0.0;
@@ -231,7 +232,8 @@ public:
   /// only when @p stiffness is null (an iteration that keeps the factor: friction changed).
   /// With @p upper, only the upper triangle of the springs' matrix (the rest is zero): what an
   /// Assembler reads.
-  /// @return whether a friction load was assembled (friction_force() of the point is not 0).
+  /// @return whether a friction load that follows the normal force was assembled (a bond's
+  /// cohesion alone, a constant load, is none).
   bool contribution(const Model& model,
                     int i,
                     Eigen::MatrixXd* stiffness,

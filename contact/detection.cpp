@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <tuple>
 #include <utility>
 
 namespace nmm {
@@ -49,10 +50,6 @@ Wedge wedge(const ContactBoundary& b, int v, double angle) {
   w.extent = angle;
   return w;
 }
-
-/// Two edges whose projections overlap by no more than this fraction of the master edge only
-/// touch at their ends: no edge-to-edge contact (the neighbouring pairs hold the ends).
-constexpr double touching_end = 1e-6;
 
 /// One key for an unordered pair of boundary indices.
 std::uint64_t pair_key(int a, int b) {
@@ -291,31 +288,32 @@ private:
     return false;
   }
 
-  /// Whether vertex v, at parameter @p t of edge m, lies at a straight end of m, or past it
-  /// by no more than the touching end (test_edge_edge() measures it on either edge of a
-  /// pair: here on the longer of m and v's edge), while that edge of v is in edge-to-edge
-  /// contact with the edge beyond that end: a block's corner where its face on a joint ends,
-  /// against the free surface that continues the joint. The pair represents the face; the
-  /// corner's spring stays (a block pivoting on that corner needs it, the pair's springs on a
-  /// short pressed part being soft: examples/10, whose pivot lies exactly so at a split of
-  /// the foundation's top) and represents no length of its own: half of the corner's edges
-  /// added to the length in contact made a 1.2 m joint 2.8 m long
-  /// (ContactCandidate::ends_edge_pair; docs/formulation.md, "Joint strength").
-  bool ends_edge_pair(int v, int m, double t) const {
+  /// When vertex v, at parameter @p t of edge m, lies at a straight end of m (or inside m by
+  /// no more than the touching end, which test_edge_edge() measures on either edge of a pair:
+  /// here on the longer of m and v's edge) and one of v's edges is in edge-to-edge contact
+  /// with the edge beyond that end: that edge of v and the edge beyond, else {-1, -1}. It is
+  /// a block's corner where its face on a joint ends, against the free surface that
+  /// continues the joint. The pair represents the face; the corner's spring stays (a block
+  /// pivoting on that corner needs it, the pair's springs on a short pressed part being
+  /// soft: examples/10, whose pivot lies exactly so at a split of the foundation's top) and
+  /// represents no length of its own: half of the corner's edges added to the length in
+  /// contact made a 1.2 m joint 2.8 m long (ContactCandidate::end_face; docs/formulation.md,
+  /// "Joint strength").
+  std::pair<int, int> ends_edge_pair(int v, int m, double t) const {
     const double length = edge_length(m);
     for (const bool at_start : {true, false}) {
       const int end = at_start ? m : b_.next[at(m)];
       const int beyond = at_start ? b_.previous[at(m)] : b_.next[at(m)];
-      const double past = (at_start ? t : 1.0 - t) * length; // how far v lies past the end
+      const double inside = (at_start ? t : 1.0 - t) * length; // how far v lies from the end
       if (!flat(end))
         continue;
       for (const int s : {v, b_.previous[at(v)]}) {
-        if (past <= touching_end * std::max(length, edge_length(s)) &&
+        if (inside <= touching_end * std::max(length, edge_length(s)) &&
             edge_pairs_.contains(pair_key(s, beyond)))
-          return true;
+          return {s, beyond};
       }
     }
-    return false;
+    return {-1, -1};
   }
 
   double edge_length(int e) const {
@@ -363,7 +361,7 @@ private:
     ContactCandidate candidate;
     candidate.slave = v;
     candidate.master = m;
-    candidate.ends_edge_pair = ends_edge_pair(v, m, t);
+    std::tie(candidate.end_face, candidate.end_beyond) = ends_edge_pair(v, m, t);
     if (gap < -options_.penetration && !kept(candidate))
       return;
     if (!fits_against(wedge(v), n, sin_overlap_))
@@ -465,7 +463,7 @@ private:
       ContactCandidate candidate;
       candidate.slave = corner;
       candidate.master = best;
-      candidate.ends_edge_pair = ends_edge_pair(corner, best, t);
+      std::tie(candidate.end_face, candidate.end_beyond) = ends_edge_pair(corner, best, t);
       if (gap > options_.distance || (gap < -options_.penetration && !kept(candidate)))
         return;
       if (!fits_against(wedge(corner), n, sin_overlap_))

@@ -60,11 +60,13 @@ struct ContactCandidate {
   /// passed first (Shi 3.2 [1]); -1 otherwise.
   int alternative_slave = -1;
   int alternative_master = -1;
-  /// vertex_edge: the vertex lies just past a straight end of the master (within the part
-  /// an edge-to-edge contact leaves out as touching) and one of its edges is in edge-to-edge
-  /// contact with the master's straight continuation there: the end of a face on a joint.
-  /// Its spring stiffens the end of that pair and represents no length of its own.
-  bool ends_edge_pair = false;
+  /// vertex_edge: the vertex lies at a straight end of the master (or inside it by no more
+  /// than an edge-to-edge contact leaves out as touching) and one of its edges, @c end_face,
+  /// is in edge-to-edge contact with @c end_beyond, the master's straight continuation
+  /// there: the end of a face on a joint. Its spring stiffens the end of that pair and
+  /// represents no length of its own; -1 when the vertex ends no such pair.
+  int end_face = -1;
+  int end_beyond = -1;
 
   [[nodiscard]] std::uint64_t key() const noexcept {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(slave)) << 33) |
@@ -75,6 +77,10 @@ struct ContactCandidate {
 
 /// Whether a ContactCandidate::key() (and so a ContactPoint's key) is an edge-to-edge pair's.
 [[nodiscard]] constexpr bool is_edge_pair(std::uint64_t key) noexcept { return (key & 1U) != 0; }
+
+/// Two edges whose projections overlap by no more than this fraction of the master edge only
+/// touch at their ends: no edge-to-edge contact (the neighbouring pairs hold the ends).
+inline constexpr double touching_end = 1e-6;
 
 /// Criteria of the detection (Shi 3.1).
 struct DetectionOptions {

@@ -278,13 +278,18 @@ TEST_F(Example, TunnelOf36DdaBlocksStandsWithTheArchStressesOfThePaper) {
     // The chatter rule holds contacts locked beyond their friction limit in these static
     // steps (phi 30: 53 of 100 steps, up to 78 times the limit): a warning with what to do,
     // in summary.json and the closing list, not an info line (issue 42).
-    const double held = run.summary.at("counters").at("locks_beyond_friction").number;
+    const long held =
+        static_cast<long>(run.summary.at("counters").at("locks_beyond_friction").number);
+    if (std::string(paper.name) == "case_phi30") {
+      EXPECT_GT(held, 0);
+    }
     const std::vector<Json>& warnings = run.summary.at("warnings").items;
+    const std::string said = "held locked beyond it at the end of " + std::to_string(held) +
+                             (held == 1 ? " step" : " steps") + " (up to ";
     const bool warned = std::any_of(warnings.begin(), warnings.end(), [&](const Json& w) {
-      return w.string.find("held locked beyond it at the end of " +
-                           std::to_string(static_cast<long>(held)) + " steps") != std::string::npos;
+      return w.string.find(said) != std::string::npos;
     });
-    EXPECT_EQ(warned, held > 0.0);
+    EXPECT_EQ(warned, held > 0);
   }
 }
 
