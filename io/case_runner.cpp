@@ -633,24 +633,6 @@ void create_output_dir(const fs::path& dir) {
 
 namespace {
 
-/// What the chatter rule held beyond Coulomb's law, as a warning with what to do: a static
-/// answer with contacts locked beyond their friction limit can call standing what slides.
-std::vector<std::string> friction_warnings(const StepperCounters& c) {
-  std::vector<std::string> warnings;
-  if (c.locks_beyond_friction > 0) {
-    warnings.push_back(
-        "contacts at the limit of friction were held locked beyond it at the end of " +
-        std::to_string(c.locks_beyond_friction) +
-        (c.locks_beyond_friction == 1 ? " step" : " steps") + " (up to " +
-        number_text(c.max_lock_excess, 3) +
-        " times the limit; the chatter rule): a body reported standing there may slide. "
-        "history.csv's lock_excess names the steps and contacts_*.vtp the contacts (state 2 "
-        "with |shear_force| above tan(phi) normal_force); a smaller max_step_displacement, or "
-        "a dynamic analysis, lets them slide");
-  }
-  return warnings;
-}
-
 /// Removes the step, contact and boundary files of an earlier run in @p dir after step @p after
 /// (all with -1), and its checkpoint unless restarting (@p after >= 0).
 void remove_old_output(const fs::path& dir, long after) {
@@ -674,6 +656,39 @@ void remove_old_output(const fs::path& dir, long after) {
 }
 
 } // namespace
+
+std::vector<std::string>
+contact_warnings(const StepperCounters& c, double max_penetration, double step_limit) {
+  std::vector<std::string> warnings;
+  if (c.locks_beyond_friction > 0) {
+    warnings.push_back(
+        "contacts at the limit of friction were held locked beyond it at the end of " +
+        std::to_string(c.locks_beyond_friction) +
+        (c.locks_beyond_friction == 1 ? " step" : " steps") + " (up to " +
+        number_text(c.max_lock_excess, 3) +
+        " times the limit; the chatter rule): a body reported standing there may slide. "
+        "history.csv's lock_excess names the steps and contacts_*.vtp the contacts (state 2 "
+        "with |shear_force| above tan(phi) normal_force, plus cohesion x length where "
+        "bonded); a smaller max_step_displacement, or a dynamic analysis, lets them slide");
+  }
+  // A tenth of the step limit: springs that let a contact sink that far move its entrance
+  // line by as much as the step's motion is meant to be small against.
+  if (step_limit > 0.0 && max_penetration > 0.1 * step_limit) {
+    warnings.push_back("contacts penetrated up to " + number_text(max_penetration, 3) + " m, " +
+                       number_text(100.0 * max_penetration / step_limit, 2) +
+                       "% of the step displacement limit (" + number_text(step_limit, 3) +
+                       " m): the contact springs are soft for these loads; raise [analysis] "
+                       "penalty, or set penetration_tolerance (augmented Lagrange)");
+  }
+  // More than one step in ten cut: the time step is too long for the contacts' changes.
+  if (c.step_cuts > 10 && 10 * c.step_cuts > c.steps) {
+    warnings.push_back(std::to_string(c.step_cuts) + " of " + std::to_string(c.steps) +
+                       " steps were cut (the open-close iteration did not settle, or a step "
+                       "moved too far): a shorter time_step or max_step_displacement, or a "
+                       "larger open_close_max, costs fewer solves");
+  }
+  return warnings;
+}
 
 RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   const Clock::time_point start = Clock::now();
@@ -727,7 +742,9 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     std::vector<std::string> warnings = analysis.warnings();
     warnings.insert(warnings.end(), restart_warnings.begin(), restart_warnings.end());
     warnings.insert(warnings.end(), stepper.warnings().begin(), stepper.warnings().end());
-    for (std::string& w : friction_warnings(stepper.counters()))
+    for (std::string& w :
+         contact_warnings(stepper.counters(), summary.max_penetration,
+                          spec.analysis.max_step_displacement * stepper.model_size()))
       warnings.push_back(std::move(w));
     return warnings;
   };

@@ -193,6 +193,15 @@ struct RunResult {
 ///         the .pvd and summary.json (status = the error message) are written first.
 RunResult run_case(CaseAnalysis& analysis, const RunOptions& options);
 
+/// What a run's contacts did that its user must know, as warnings with what to do (listed at
+/// the end and in summary.json): locks the chatter rule held beyond Coulomb's law at the end
+/// of a step (a static answer that calls standing what slides); penetration beyond a tenth of
+/// the step displacement limit @p step_limit (max_step_displacement x model size, m: the
+/// entrance theory assumes contacts that close within a step's small motion); more than one
+/// step in ten cut (and more than ten).
+[[nodiscard]] std::vector<std::string>
+contact_warnings(const StepperCounters& counters, double max_penetration, double step_limit);
+
 /// Creates @p dir (and its parents) when missing.
 /// @throws InputError naming the folder when it cannot be created or is a file.
 void create_output_dir(const std::filesystem::path& dir);

@@ -22,6 +22,8 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -224,6 +226,33 @@ TEST_F(Cli, CantileverRunsEndToEndAndEveryOutputReadsBack) {
   EXPECT_TRUE(summary.at("warnings").is_array());
   EXPECT_EQ(summary.at("monitors").at("tip").at("uy").number, tip_uy);
   EXPECT_EQ(summary.at("counters").at("factorizations").number, 1);
+}
+
+TEST_F(Cli, SoftContactSpringsThatLetABlockSinkDeepAreAWarning) {
+  // examples/03 with springs of 1e-5 E for 50 steps: the block sinks 1.8 cm, 28% of the step
+  // displacement limit (0.0635 m): listed at the end and in summary.json (issue 42).
+  const fs::path incline = fs::path(NMM_EXAMPLES_DIR) / "03_block_on_incline";
+  fs::copy_file(incline / "incline.geo", dir() / "incline.geo");
+  std::ifstream in(incline / "case.toml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const auto& [from, to] :
+       {std::pair<std::string, std::string>{"penalty = 40.0", "penalty = 1.0e-5"},
+        {"steps = 2000", "steps = 50"}}) {
+    const std::size_t at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  }
+  const fs::path soft = dir() / "soft.toml";
+  std::ofstream(soft) << text;
+  const fs::path out = dir() / "out";
+  const ProcessResult run = nmm({"run", soft.string(), "-o", out.string(), "--quiet"});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  expect_all(run.out, {"contacts penetrated up to", "of the step displacement limit"});
+  const testing::Json summary = parse_json(read_text(out / "summary.json"));
+  bool listed = false;
+  for (const testing::Json& w : summary.at("warnings").items)
+    listed = listed || w.string.find("contacts penetrated up to") != std::string::npos;
+  EXPECT_TRUE(listed);
 }
 
 TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {

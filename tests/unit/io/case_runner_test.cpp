@@ -557,3 +557,42 @@ TEST_F(CaseRunner, RestartOfAnotherModelIsRefusedAndAnEditedCaseIsWarnedAbout) {
 
 } // namespace
 } // namespace nmm
+
+namespace nmm {
+namespace {
+
+TEST(ContactWarnings, EachWarnsJustPastItsThresholdAndNotBelow) {
+  // Issue 42: what a user must know is a warning, with what to do. Both sides of each
+  // threshold: a lock held beyond friction in one step; penetration over a tenth of the step
+  // displacement limit; more than ten cut steps and more than one step in ten.
+  StepperCounters c;
+  c.steps = 200;
+  EXPECT_TRUE(contact_warnings(c, 0.0, 0.1).empty()) << "nothing to say";
+  c.locks_beyond_friction = 1;
+  c.max_lock_excess = 2.5;
+  std::vector<std::string> w = contact_warnings(c, 0.0, 0.1);
+  ASSERT_EQ(w.size(), 1U);
+  EXPECT_NE(w[0].find("held locked beyond it at the end of 1 step (up to 2.5 times"),
+            std::string::npos)
+      << w[0];
+  c.locks_beyond_friction = 0;
+  EXPECT_TRUE(contact_warnings(c, 0.0099, 0.1).empty()) << "9.9% of the step limit";
+  w = contact_warnings(c, 0.0101, 0.1);
+  ASSERT_EQ(w.size(), 1U);
+  EXPECT_NE(w[0].find("penetrated up to 0.0101 m, 10% of the step displacement limit (0.1 m)"),
+            std::string::npos)
+      << w[0];
+  EXPECT_NE(w[0].find("penalty"), std::string::npos) << "says what to do";
+  c.step_cuts = 20; // one in ten: not more
+  EXPECT_TRUE(contact_warnings(c, 0.0, 0.1).empty());
+  c.step_cuts = 21;
+  w = contact_warnings(c, 0.0, 0.1);
+  ASSERT_EQ(w.size(), 1U);
+  EXPECT_NE(w[0].find("21 of 200 steps were cut"), std::string::npos) << w[0];
+  c.steps = 50;
+  c.step_cuts = 10; // a fifth, but only ten
+  EXPECT_TRUE(contact_warnings(c, 0.0, 0.1).empty());
+}
+
+} // namespace
+} // namespace nmm
