@@ -97,8 +97,9 @@ private:
   [[nodiscard]] std::unique_ptr<ContactSystem> make_contact_system(double penalty) const;
   /// Warnings about scales that the case file alone cannot judge (docs/case-file.md,
   /// "Checks across tables and warnings"): a fixed time step longer than Shi's for
-  /// max_step_displacement, nmm blocks much smaller than the math triangles.
-  void add_scale_warnings(double model_size);
+  /// max_step_displacement, nmm blocks much smaller than the math triangles, a model so far
+  /// from the origin (its material's bounding box @p box) that its coordinates lose digits.
+  void add_scale_warnings(const BoundingBox& box, double model_size);
   /// A warning for every Physical Curve that runs through the inside of a block but is no
   /// joint, [[boundary]] or [[load]] of the case: a joint the case forgot does not cut.
   void add_unused_curve_warnings();
