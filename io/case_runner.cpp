@@ -10,9 +10,12 @@
 #include "mesh/cover_mesher.hpp"
 #include "mesh/error.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -818,6 +821,71 @@ void create_output_dir(const fs::path& dir) {
 
 namespace {
 
+/// An exclusive lock on @p dir for the lifetime of the object: flock(2) on its lock file,
+/// which stays in the folder (the lock goes with the descriptor, also when the process is
+/// killed). It holds the locking process's id for the message of a refused second run.
+class OutputLock {
+public:
+  explicit OutputLock(const fs::path& dir) {
+    const fs::path file = dir / output_lock_file_name;
+    descriptor_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (descriptor_ < 0) {
+      throw InputError("cannot write " + quoted(file) + ": " +
+                       std::generic_category().message(errno) +
+                       "; make the output folder writable or choose another with -o DIR or "
+                       "[output] dir");
+    }
+    if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      std::string holder;
+      char text[32] = {};
+      if (::pread(descriptor_, text, sizeof text - 1, 0) > 0)
+        holder = std::string(text).substr(0, std::string(text).find('\n'));
+      ::close(descriptor_);
+      descriptor_ = -1;
+      if (error == EWOULDBLOCK) {
+        throw InputError(
+            "another nmm run" + (holder.empty() ? std::string() : " (process " + holder + ")") +
+            " is writing into the output folder " + quoted(dir) + " (it holds " + quoted(file) +
+            "): two runs in one folder would mix their files; wait for it to end or stop it, "
+            "or give this run another folder with -o DIR");
+      }
+      // A file system without locks (ENOLCK, some network mounts): run unlocked.
+      return;
+    }
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(descriptor_, 0) != 0 ||
+        ::pwrite(descriptor_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
+      // The lock holds without the process id; the message of a second run just lacks it.
+    }
+  }
+  ~OutputLock() {
+    if (descriptor_ >= 0)
+      ::close(descriptor_);
+  }
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+  OutputLock(OutputLock&&) = delete;
+  OutputLock& operator=(OutputLock&&) = delete;
+
+private:
+  int descriptor_ = -1;
+};
+
+/// Refuses a folder in @p dir under the name of a file that run_case() writes: the rename
+/// of the finished file onto it would fail only at the end of the run.
+void refuse_folders_named_like_outputs(const fs::path& dir) {
+  for (const char* name : {"summary.json", "history.csv", "case.pvd", checkpoint_file_name}) {
+    const fs::path file = dir / name;
+    std::error_code error;
+    if (fs::is_directory(file, error)) {
+      throw InputError(quoted(file) + " is a folder, where nmm run writes its " + name +
+                       " file; remove or rename the folder, or choose another output folder "
+                       "with -o DIR or [output] dir");
+    }
+  }
+}
+
 /// Removes the step, contact and boundary files of an earlier run in @p dir after step @p after
 /// (all with -1), and its checkpoint unless restarting (@p after >= 0).
 void remove_old_output(const fs::path& dir, long after) {
@@ -862,9 +930,14 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   std::vector<std::string> restart_warnings;
   std::optional<CheckpointRun> restored;
   std::optional<HistoryWriter> history;
+  std::optional<OutputLock> lock;
   if (options.restart) {
-    // Everything is checked before anything in the folder changes.
+    // Everything is checked before anything in the folder changes (but the lock file).
+    std::error_code error;
+    if (fs::is_directory(dir, error))
+      lock.emplace(dir);
     restored = read_checkpoint(checkpoint_file, stepper, fingerprint, case_hash, restart_warnings);
+    refuse_folders_named_like_outputs(dir);
     const std::size_t n_points = step_points(model).size();
     if (restored->initial_points.size() != n_points ||
         restored->monitor_starts.size() != spec.monitors.size())
@@ -878,6 +951,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     remove_old_output(dir, restored->step);
   } else {
     create_output_dir(dir);
+    lock.emplace(dir);
+    refuse_folders_named_like_outputs(dir);
     remove_old_output(dir, -1);
   }
 

@@ -188,11 +188,19 @@ struct RunResult {
 /// in the folder are removed first so that the folder holds one run, except with
 /// RunOptions::restart, which continues them from the checkpoint's step.
 /// @pre run_case() was not called on @p analysis before.
-/// @throws InputError naming the folder when it cannot be created or written, or the
-///         checkpoint when a restart cannot continue from it (read_checkpoint()).
+/// The folder is locked (output_lock_file_name) for the run.
+/// @throws InputError naming the folder when it cannot be created or written, when another
+///         run holds its lock, when a folder in it has the name of a file the run writes
+///         (`checkpoint.nmm`, ...), or the checkpoint when a restart cannot continue from it
+///         (read_checkpoint()).
 /// @throws NumericalError (or anything else) when a step fails; the last completed step,
 ///         the .pvd and summary.json (status = the error message) are written first.
 RunResult run_case(CaseAnalysis& analysis, const RunOptions& options);
+
+/// The file in the output folder that run_case() locks (flock) while it runs: a second run
+/// into the same folder is refused. It stays in the folder and holds the last locker's
+/// process id.
+inline constexpr const char* output_lock_file_name = ".nmm.lock";
 
 /// Creates @p dir (and its parents) when missing.
 /// @throws InputError naming the folder when it cannot be created or is a file.

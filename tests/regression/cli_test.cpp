@@ -600,6 +600,14 @@ TEST_F(BadInput, ValuesTheModelCannotHoldAreRefusedByCheckAndRunBeforeAnythingIs
   }
 }
 
+TEST_F(BadInput, CheckpointThatIsAFolderIsAnInputError) {
+  fs::create_directories(dir() / "out" / "checkpoint.nmm" / "x");
+  expect_input_error(testing::plate_case,
+                     {(dir() / "out" / "checkpoint.nmm").string(), "is a folder"});
+  expect_input_error(testing::plate_case, {"checkpoint.nmm is a folder, not a checkpoint file"},
+                     {"--restart", (dir() / "out").string()});
+}
+
 TEST_F(BadInput, CheckReportsTheSameErrorsAsRun) {
   const fs::path file = testing::write_case(
       dir(), replaced(testing::plate_case, "[materials.rock]", "[materials.granit]"));
@@ -683,6 +691,39 @@ TEST_F(Cli, ModelFarFromTheOriginIsWarnedAboutAtTheEndAndInTheSummary) {
   const testing::Json summary = parse_json(read_text(dir() / "out" / "summary.json"));
   ASSERT_EQ(summary.at("warnings").items.size(), 1u);
   expect_all(summary.at("warnings").items[0].string, {warning, "subtract (1e+15, 0.5)"});
+}
+
+// ---------------------------------------------------------------------------------------
+// Output that cannot be written: a file-size limit, a full disk, a second run
+
+/// The plate of testing::plate_case shaking for many steps, with only the start and the
+/// last step written as step files: history.csv is what grows.
+std::string long_plate_case() {
+  std::string text = replaced(testing::plate_case, "kind = \"static\"\nsteps = 3",
+                              "kind = \"dynamic\"\nsteps = 100000\ntime_step = 1.0e-5");
+  return replaced(text, "every = 2", "every = 100000000");
+}
+
+TEST_F(Cli, SecondRunIntoTheFolderOfARunningOneIsRefused) {
+  const fs::path file = testing::write_case(dir(), long_plate_case());
+  const fs::path out = dir() / "out";
+  const testing::ChildProcess first = testing::start_process(
+      {nmm_program.string(), "run", file.string(), "-o", out.string(), "--quiet"}, dir() / "first");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (split(read_text(out / "history.csv"), '\n').size() < 3 &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const ProcessResult second = nmm({"run", file.string(), "-o", out.string(), "--quiet"});
+  ::kill(first.pid, SIGKILL);
+  static_cast<void>(testing::wait_process(first, std::chrono::seconds(60)));
+  EXPECT_EQ(second.exit_code, 2) << second.err;
+  expect_all(second.err, {"error: another nmm run (process " + std::to_string(first.pid) +
+                              ") is writing into the output folder",
+                          out.string(), "-o DIR"});
+  // The first run's lock died with it: the folder can be used again.
+  const ProcessResult third =
+      nmm({"run", file.string(), "-o", out.string(), "--quiet", "--steps", "2"});
+  EXPECT_EQ(third.exit_code, 0) << third.err;
 }
 
 // ---------------------------------------------------------------------------------------

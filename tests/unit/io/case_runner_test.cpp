@@ -8,7 +8,10 @@
 
 #include "../../support/case_fixtures.hpp"
 #include "../../support/json_reader.hpp"
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cmath>
@@ -663,6 +666,53 @@ TEST_F(CaseRunner, ModelFarFromTheOriginIsWarnedAboutWithTheDigitsItCosts) {
   EXPECT_EQ(result.warnings, far.warnings());
   // At the origin, or at a million metres for a 2 m plate (5.7 digits), no warning.
   EXPECT_TRUE(CaseAnalysis(read_case_file(case_file(plate_case))).warnings().empty());
+}
+
+// ---------------------------------------------------------------------------------------
+// The output folder: names taken by folders, and one run at a time
+
+TEST_F(CaseRunner, FolderNamedLikeAnOutputFileIsAnInputErrorBeforeAnythingIsWritten) {
+  CaseAnalysis analysis(read_case_file(case_file(plate_case)));
+  fs::create_directories(dir() / "out" / "checkpoint.nmm" / "inside");
+  try {
+    static_cast<void>(run_case(analysis, {}));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    expect_all(error.what(), {(dir() / "out" / "checkpoint.nmm").string(), "is a folder",
+                              "remove or rename the folder"});
+  }
+  EXPECT_FALSE(fs::exists(dir() / "out" / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir() / "out" / "history.csv"));
+  // A restart from it: an input error too (it was an internal error, exit code 4).
+  expect_all(restart_error(dir() / "case.toml"),
+             {"checkpoint.nmm is a folder, not a checkpoint file", "without --restart"});
+}
+
+TEST_F(CaseRunner, SecondRunIntoALockedFolderIsRefusedNamingTheFolder) {
+  // Another process's run holds the folder's lock (flock on its own descriptor).
+  fs::create_directories(dir() / "out");
+  const fs::path lock_file = dir() / "out" / output_lock_file_name;
+  testing::write_text(lock_file, "12345\n");
+  const int other = ::open(lock_file.c_str(), O_RDWR);
+  ASSERT_GE(other, 0);
+  ASSERT_EQ(::flock(other, LOCK_EX | LOCK_NB), 0);
+  CaseAnalysis analysis(read_case_file(case_file(plate_case)));
+  try {
+    static_cast<void>(run_case(analysis, {}));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    expect_all(error.what(), {"another nmm run (process 12345) is writing into the output folder",
+                              (dir() / "out").string(), "-o DIR"});
+  }
+  EXPECT_FALSE(fs::exists(dir() / "out" / "summary.json"));
+  ::close(other);
+  // Released, the folder is free again; the run's lock goes with it.
+  CaseAnalysis again(read_case_file(case_file(plate_case)));
+  EXPECT_EQ(run_case(again, {}).steps, 3);
+  EXPECT_TRUE(fs::exists(dir() / "out" / "summary.json"));
+  const int after = ::open(lock_file.c_str(), O_RDWR);
+  EXPECT_EQ(::flock(after, LOCK_EX | LOCK_NB), 0) << "released when the run ends";
+  ::close(after);
 }
 
 } // namespace
