@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/case_runner.hpp"
 
+#include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
 #include "io/gmsh_reader.hpp"
 #include "io/step_output.hpp"
@@ -1082,7 +1083,10 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     } catch (const std::exception&) { // the first error is the one to report
     }
     try {
-      update_summary(error.what());
+      // An output that could not be written (a full disk, a file-size limit) is a failure of
+      // the run, not of the case: its status says so ("failed: disk full: ...").
+      const bool output_failed = dynamic_cast<const OutputWriteError*>(&error) != nullptr;
+      update_summary(output_failed ? "failed: " + std::string(error.what()) : error.what());
       write_summary_json(summary_file, summary);
     } catch (const std::exception&) { // the first error is the one to report
     }

@@ -704,6 +704,74 @@ std::string long_plate_case() {
   return replaced(text, "every = 2", "every = 100000000");
 }
 
+/// Checks that @p file is history.csv made of whole rows only.
+void expect_whole_rows(const fs::path& file) {
+  const std::string text = read_text(file);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n') << "the last row is whole";
+  const std::vector<std::string> lines = split(text, '\n');
+  const std::size_t columns = split(lines.front(), ',').size();
+  for (std::size_t k = 1; k < lines.size(); ++k)
+    EXPECT_EQ(split(lines[k], ',').size(), columns) << "line " << k + 1;
+}
+
+TEST_F(Cli, FileSizeLimitEndsTheRunWithAMessageNotASignal) {
+  // ulimit -f 40: files of at most 40 KiB. SIGXFSZ used to kill nmm (exit code 153).
+  const fs::path file = testing::write_case(dir(), long_plate_case());
+  const fs::path out = dir() / "out";
+  const ProcessResult run = testing::run_process(
+      {"/bin/bash", "-c", "ulimit -f 40 && exec \"$0\" run \"$1\" -o \"$2\" --quiet",
+       nmm_program.string(), file.string(), out.string()},
+      dir() / "ulimit");
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  expect_all(run.err, {"error: file too large: cannot write", "file-size limit of 40960 bytes",
+                       "ulimit -f", "what it wrote so far is in"});
+  const testing::Json summary = parse_json(read_text(out / "summary.json"));
+  EXPECT_EQ(summary.at("status").string.rfind("failed: file too large: ", 0), 0u)
+      << summary.at("status").string;
+  expect_whole_rows(out / "history.csv");
+  // One row per step up to the one whose row did not fit (counted in steps: it was solved).
+  const auto steps = static_cast<std::size_t>(summary.at("steps").number);
+  EXPECT_GT(steps, 10u);
+  EXPECT_EQ(split(read_text(out / "history.csv"), '\n').size(), steps);
+}
+
+TEST_F(Cli, FullDiskLeavesWholeRowsAndTheSummarySaysSo) {
+  // A real full disk: a tmpfs of 192 KiB mounted in a user and mount namespace of our own
+  // (unshare -rm; no root needed where user namespaces are allowed). Its files are copied
+  // out before the namespace and its tmpfs go.
+  const fs::path file = testing::write_case(dir(), long_plate_case());
+  const fs::path disk = dir() / "disk";
+  const fs::path copy = dir() / "copy";
+  fs::create_directories(disk);
+  fs::create_directories(copy);
+  const ProcessResult probe =
+      testing::run_process({"/usr/bin/unshare", "-rm", "/bin/sh", "-c",
+                            "mount -t tmpfs -o size=64k nmm \"$0\"", disk.string()},
+                           dir() / "probe");
+  if (probe.exit_code != 0)
+    GTEST_SKIP() << "no tmpfs in a user namespace here (unshare -rm): " << probe.err;
+  const ProcessResult run = testing::run_process(
+      {"/usr/bin/unshare", "-rm", "/bin/sh", "-c",
+       "mount -t tmpfs -o size=192k nmm \"$0\" || exit 99; \"$1\" run \"$2\" -o \"$0/out\" "
+       "--quiet; code=$?; cp -r \"$0/out\" \"$3\"; exit $code",
+       disk.string(), nmm_program.string(), file.string(), copy.string()},
+      dir() / "full");
+  ASSERT_NE(run.exit_code, 99) << run.err;
+  EXPECT_EQ(run.exit_code, 2) << run.err;
+  expect_all(run.err, {"error: disk full: cannot write", "No space left on device",
+                       "what it wrote so far is in"});
+  const fs::path out = copy / "out";
+  const testing::Json summary = parse_json(read_text(out / "summary.json"));
+  EXPECT_EQ(summary.at("status").string.rfind("failed: disk full: cannot write ", 0), 0u)
+      << summary.at("status").string;
+  expect_whole_rows(out / "history.csv");
+  // One row per step up to the one whose row did not fit (counted in steps: it was solved).
+  const auto steps = static_cast<std::size_t>(summary.at("steps").number);
+  EXPECT_GT(steps, 10u);
+  EXPECT_EQ(split(read_text(out / "history.csv"), '\n').size(), steps);
+}
+
 TEST_F(Cli, SecondRunIntoTheFolderOfARunningOneIsRefused) {
   const fs::path file = testing::write_case(dir(), long_plate_case());
   const fs::path out = dir() / "out";
