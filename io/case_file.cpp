@@ -47,9 +47,10 @@ namespace {
 constexpr double largest_input_magnitude = 1e100;
 
 // The schema: the keys each table accepts. Also used to say where a misplaced key belongs.
-constexpr std::string_view top_level_keys[] = {"geometry", "title",   "cover_mesh", "materials",
-                                               "joints",   "contact", "boundary",   "load",
-                                               "analysis", "monitor", "output"};
+constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geometry_time_limit",
+                                               "cover_mesh", "materials", "joints",
+                                               "contact",    "boundary",  "load",
+                                               "analysis",   "monitor",   "output"};
 constexpr std::string_view cover_mesh_keys[] = {
     "kind", "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance"};
 constexpr std::string_view material_keys[] = {"model",
@@ -1041,6 +1042,10 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
   spec.geometry = resolve(file, *geometry);
   spec.geometry_line = top.key_position("geometry").line;
   spec.title = top.string("title", "a title", "\"Slope with bedding joints\"").value_or("");
+  spec.geometry_time_limit = top.number_or("geometry_time_limit", 60.0, "s", "600.0");
+  if (!(spec.geometry_time_limit > 0.0))
+    top.fail_range("geometry_time_limit", spec.geometry_time_limit,
+                   "it must be > 0 (s): the longest time reading the .geo may take");
 
   spec.cover_mesh = read_cover_mesh(context, root);
 

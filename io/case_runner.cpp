@@ -376,6 +376,10 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
     session.emplace();
   GeometryReadOptions read_options;
   read_options.curve_tolerance = spec.cover_mesh.curve_tolerance;
+  // A .geo is a program: one that loops or grows without end is stopped at these limits.
+  read_options.time_limit = spec.geometry_time_limit;
+  if (const double memory = memory_available().first; std::isfinite(memory))
+    read_options.memory_limit = memory;
 
   phase("reading " + spec.geometry.string());
   Clock::time_point start = Clock::now();

@@ -608,6 +608,43 @@ TEST_F(BadInput, CheckpointThatIsAFolderIsAnInputError) {
                      {"--restart", (dir() / "out").string()});
 }
 
+TEST_F(BadInput, EndlessGeoIsStoppedAtTheCasesTimeLimit) {
+  // An endless For loop used to hang nmm; geometry_time_limit stops it (here 1 s).
+  testing::write_text(dir() / "endless.geo",
+                      std::string(testing::plate_geo) + "For k In {1:1e15}\n  x = k;\nEndFor\n");
+  std::string text = replaced(testing::plate_case, "plate.geo", "endless.geo");
+  text = replaced(text, "title = \"plate\"", "title = \"plate\"\ngeometry_time_limit = 1.0");
+  expect_input_error(text, {"endless.geo: reading the geometry was stopped after 1 s",
+                            "raise geometry_time_limit"});
+}
+
+TEST_F(Cli, CtrlCStopsNmmWhileGmshRunsAnEndlessGeo) {
+  testing::write_text(dir() / "endless.geo",
+                      std::string(testing::plate_geo) + "For k In {1:1e15}\n  x = k;\nEndFor\n");
+  const fs::path file =
+      testing::write_case(dir(), replaced(testing::plate_case, "plate.geo", "endless.geo"));
+  const testing::ChildProcess child =
+      testing::start_process({nmm_program.string(), "check", file.string()}, dir() / "endless");
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ASSERT_EQ(::kill(child.pid, SIGINT), 0);
+  EXPECT_EQ(testing::wait_process(child, std::chrono::seconds(20)), 128 + SIGINT)
+      << "stopped by the signal, at once";
+  // The process that reads the .geo within the limits (a fork of nmm) dies with it.
+  const auto still_reading = [&] {
+    for (const auto& entry : fs::directory_iterator("/proc")) {
+      const std::string command = read_text(entry.path() / "cmdline");
+      if (command.find(file.string()) != std::string::npos &&
+          read_text(entry.path() / "stat").find(") Z ") == std::string::npos)
+        return true;
+    }
+    return false;
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (still_reading() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_FALSE(still_reading()) << "a reader of endless.geo outlived nmm";
+}
+
 TEST_F(BadInput, CheckReportsTheSameErrorsAsRun) {
   const fs::path file = testing::write_case(
       dir(), replaced(testing::plate_case, "[materials.rock]", "[materials.granit]"));
