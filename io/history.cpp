@@ -94,7 +94,12 @@ HistoryWriter::HistoryWriter(std::filesystem::path file, std::vector<std::string
     throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
                      "; choose a writable output folder with -o DIR or [output] dir");
   }
-  append(history_header(monitor_names) + '\n', "its header");
+  try {
+    append(history_header(monitor_names) + '\n', "its header");
+  } catch (...) {
+    static_cast<void>(::close(descriptor_)); // no destructor runs for a failed constructor
+    throw;
+  }
 }
 
 HistoryWriter::HistoryWriter(std::filesystem::path file,
