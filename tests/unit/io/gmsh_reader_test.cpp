@@ -604,6 +604,11 @@ TEST(GmshReader, EndlessGeoIsStoppedAtTheTimeLimitAndAGoodOneReadsAsWithoutLimit
 }
 
 TEST(GmshReader, GeoThatGrowsWithoutBoundIsStoppedAtTheMemoryLimit) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer's allocator does not fail cleanly under an address-space limit: the
+  // child ran for minutes (2026-12-01).
+  GTEST_SKIP() << "an address-space limit and AddressSanitizer do not mix";
+#endif
   const TempDir dir("nmm_geo_limits");
   const fs::path points = dir.path() / "points.geo";
   std::ofstream(points) << square_then("For k In {1:100000000}\n  Point(100 + k) = {k, 5, 0};\n"
