@@ -42,10 +42,15 @@ const JointSpec* CaseSpec::find_joint(std::string_view name) const {
 
 namespace {
 
+// No number of a case in SI units comes near this (a neutron star's density is 5e17 kg/m^3),
+// and products of three such numbers still fit in a double.
+constexpr double largest_input_magnitude = 1e100;
+
 // The schema: the keys each table accepts. Also used to say where a misplaced key belongs.
-constexpr std::string_view top_level_keys[] = {"geometry", "title",   "cover_mesh", "materials",
-                                               "joints",   "contact", "boundary",   "load",
-                                               "analysis", "monitor", "output"};
+constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geometry_time_limit",
+                                               "cover_mesh", "materials", "joints",
+                                               "contact",    "boundary",  "load",
+                                               "analysis",   "monitor",   "output"};
 constexpr std::string_view cover_mesh_keys[] = {
     "kind", "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance"};
 constexpr std::string_view material_keys[] = {"model",
@@ -408,6 +413,15 @@ private:
       context_.fail(position_of(node.source()), subject(key) + " is " + format_number(value) +
                                                     "; it must be a finite number (" +
                                                     std::string(unit) + ")");
+    if (std::abs(value) > largest_input_magnitude)
+      context_.fail(position_of(node.source()),
+                    subject(key) + " is " + format_number(value) + ", which is not finite in " +
+                        "the model's units: the step equations multiply such values together " +
+                        "(stiffness by displacement, mass by velocity squared) and beyond " +
+                        format_number(largest_input_magnitude) +
+                        " the products overflow double precision (1.8e308); check the value "
+                        "and its unit (" +
+                        std::string(unit) + ", SI)");
     return value;
   }
 
@@ -764,6 +778,15 @@ LoadSpec read_load(Context& context, const toml::table& table) {
   return spec;
 }
 
+// Springs stiffer than this multiple of Young's modulus leave the element stiffness beside
+// them below the last of double's 16 digits once the solver has eliminated them: the step
+// matrix is singular in effect, and bodies that the springs hold look free.
+constexpr double largest_penalty = 1e12;
+constexpr const char* penalty_too_large =
+    "springs more than 1e12 times the largest Young's modulus make the step system singular "
+    "(next to them the elements' stiffness is below what double precision holds, so the "
+    "bodies they hold look free); Shi uses 10 to 100, nmm's default is 40";
+
 AnalysisSpec read_analysis(Context& context, const toml::table& root) {
   const toml::table* table = single_table(context, root, "analysis");
   if (!table)
@@ -808,6 +831,8 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
     view.fail_range("penalty", spec.penalty,
                     "it must be > 0 (a multiple of the largest Young's modulus; Shi uses 10 to "
                     "100)");
+  if (spec.penalty > largest_penalty)
+    view.fail_range("penalty", spec.penalty, penalty_too_large);
   spec.penalty_stiffness = view.number("penalty_stiffness", "N/m", "1.0e11");
   if (spec.penalty_stiffness && !(*spec.penalty_stiffness > 0.0))
     view.fail_range("penalty_stiffness", *spec.penalty_stiffness,
@@ -968,6 +993,15 @@ void check_whole_case(Context& context,
   const double penalty = spec.analysis.penalty_stiffness && largest_young > 0.0
                              ? *spec.analysis.penalty_stiffness / largest_young
                              : spec.analysis.penalty;
+  if (spec.analysis.penalty_stiffness && penalty > largest_penalty) {
+    const toml::node* node = root["analysis"]["penalty_stiffness"].node();
+    context.fail(
+        position_of(node->source()),
+        "[analysis] penalty_stiffness = " + format_number(*spec.analysis.penalty_stiffness) +
+            " N/m is " + number_text(penalty, 3) + " times the largest Young's modulus (" +
+            number_text(largest_young, 3) + " Pa); " + penalty_too_large +
+            "; use penalty = 40 instead");
+  }
   if (penalty < 40.0 / 25.0 || penalty > 40.0 * 25.0) {
     const bool absolute = spec.analysis.penalty_stiffness.has_value();
     context.warn(line_of(root, "analysis", absolute ? "penalty_stiffness" : "penalty"),
@@ -1008,6 +1042,10 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
   spec.geometry = resolve(file, *geometry);
   spec.geometry_line = top.key_position("geometry").line;
   spec.title = top.string("title", "a title", "\"Slope with bedding joints\"").value_or("");
+  spec.geometry_time_limit = top.number_or("geometry_time_limit", 60.0, "s", "600.0");
+  if (!(spec.geometry_time_limit > 0.0))
+    top.fail_range("geometry_time_limit", spec.geometry_time_limit,
+                   "it must be > 0 (s): the longest time reading the .geo may take");
 
   spec.cover_mesh = read_cover_mesh(context, root);
 
@@ -1072,6 +1110,11 @@ CaseSpec parse_case_text(std::string_view text, const std::filesystem::path& nam
 }
 
 CaseSpec read_case_file(const std::filesystem::path& file) {
+  std::error_code folder_error;
+  if (std::filesystem::is_directory(file, folder_error))
+    throw InputError(file.string(), 0, 0,
+                     "is a folder, not a case file; give the case file (TOML) in it, e.g. " +
+                         (file / "case.toml").string());
   std::ifstream in(file, std::ios::binary);
   if (!in)
     throw InputError(file.string(), 0, 0, "cannot open the case file; check the path");

@@ -211,6 +211,9 @@ struct CaseSpec {
   std::filesystem::path geometry;
   /// Line of the `geometry` key, for messages about the geometry file.
   int geometry_line = 0;
+  /// `geometry_time_limit`: the longest wall time (s) reading a .geo may take, > 0
+  /// (GeometryReadOptions::time_limit).
+  double geometry_time_limit = 60.0;
   std::string title;
   CoverMeshSpec cover_mesh;
   /// In the order of the case file.

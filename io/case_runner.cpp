@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/case_runner.hpp"
 
+#include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
 #include "io/gmsh_reader.hpp"
 #include "io/step_output.hpp"
@@ -10,9 +11,12 @@
 #include "mesh/cover_mesher.hpp"
 #include "mesh/error.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -193,6 +197,168 @@ void refuse_if_too_large(const CaseSpec& spec, double triangles) {
            (order == 1 ? " (or order = 0, a third of the memory)" : ""));
 }
 
+/// Beyond this strain (a load's stress over Young's modulus, a velocity over the wave speed)
+/// a case means nothing in small-strain elasticity, whose validity ends far below 1: the
+/// displacements are many times the model's size, supports and contacts are torn apart and
+/// the step equations lose every digit or overflow (a point force of 1e20 N on a 2 m plate
+/// of 1 GPa ended, after writing its first step, in "contradictory supports").
+constexpr double largest_strain = 1e3;
+
+/// What every refusal of refuse_values_beyond_the_model() ends with.
+std::string not_finite_in_model_units(std::string_view unit) {
+  return ", which is not finite in the model's units: beyond a strain of " +
+         number_text(largest_strain) +
+         " the displacements are many times the model's size and the step equations lose "
+         "every digit or overflow double precision; check the value and its unit (" +
+         std::string(unit) + ", SI)";
+}
+
+/// Refuses loads and initial states that the model cannot represent: each is turned into the
+/// strain it gives the model of size @p size (m), against Young's modulus of the material
+/// it acts on (the largest one when it acts on all), and must stay below largest_strain. The
+/// case-file reader has already refused every number beyond 1e100, so these products are
+/// finite.
+void refuse_values_beyond_the_model(const CaseSpec& spec, const BoundingBox& box, double size) {
+  double largest_young = 0.0;
+  double thickness = 0.0;
+  const MaterialSpec* stiffest = nullptr;
+  for (const MaterialSpec& m : spec.materials) {
+    if (m.young > largest_young) {
+      largest_young = m.young;
+      stiffest = &m;
+    }
+    thickness = std::max(thickness, m.thickness);
+  }
+  if (stiffest == nullptr)
+    return;
+  const auto against = [](const MaterialSpec& m) {
+    return "Young's modulus " + number_text(m.young) + " Pa of material " + in_quotes(m.name);
+  };
+  for (const LoadSpec& load : spec.loads) {
+    const double magnitude = load.vector.norm();
+    switch (load.kind) {
+    case LoadKind::gravity:
+      for (const MaterialSpec& m : spec.materials) {
+        const double stress = m.density * magnitude * size;
+        if (stress / m.young > largest_strain)
+          fail(spec, load.line,
+               "[[load]] gravity = " + point_text(load.vector, 4) + " m/s^2 weighs on material " +
+                   in_quotes(m.name) + " (density " + number_text(m.density) +
+                   " kg/m^3) with about density x gravity x model size = " + number_text(stress) +
+                   " Pa over the model's size " + number_text(size) + " m, a strain of " +
+                   number_text(stress / m.young) + " against its Young's modulus " +
+                   number_text(m.young) + " Pa" +
+                   not_finite_in_model_units("m/s^2; Earth's is 9.81"));
+      }
+      break;
+    case LoadKind::point: {
+      const double stress = magnitude / (size * thickness);
+      if (stress / largest_young > largest_strain)
+        fail(spec, load.line,
+             "[[load]] force = " + point_text(load.vector, 4) + " N at point " +
+                 in_quotes(load.target) + " spread over the model's size " + number_text(size) +
+                 " m is a stress of " + number_text(stress) + " Pa, a strain of " +
+                 number_text(stress / largest_young) + " against the largest " +
+                 against(*stiffest) + not_finite_in_model_units("N"));
+      break;
+    }
+    case LoadKind::traction:
+      if (magnitude / largest_young > largest_strain)
+        fail(spec, load.line,
+             "[[load]] traction = " + point_text(load.vector, 4) + " Pa on curve " +
+                 in_quotes(load.target) + " is a strain of " +
+                 number_text(magnitude / largest_young) + " against the largest " +
+                 against(*stiffest) + not_finite_in_model_units("Pa"));
+      break;
+    case LoadKind::pressure: {
+      double pressure = std::abs(load.pressure);
+      if (load.water_level && !box.is_empty())
+        pressure += load.water_unit_weight * std::max(0.0, *load.water_level - box.min.y());
+      if (pressure / largest_young > largest_strain)
+        fail(spec, load.line,
+             "[[load]] on curve " + in_quotes(load.target) + ": its pressure" +
+                 (load.water_level ? " (with the water's at the model's lowest point)"
+                                   : std::string()) +
+                 " of " + number_text(pressure) + " Pa is a strain of " +
+                 number_text(pressure / largest_young) + " against the largest " +
+                 against(*stiffest) +
+                 not_finite_in_model_units(load.water_level ? "Pa, m and N/m^3" : "Pa"));
+      break;
+    }
+    }
+  }
+  const bool dynamic = spec.analysis.kind == AnalysisKind::dynamic;
+  for (const MaterialSpec& m : spec.materials) {
+    const double stress = m.initial_stress.cwiseAbs().maxCoeff();
+    if (stress / m.young > largest_strain)
+      fail(spec, m.line,
+           "[materials." + m.name + "] initial_stress of " + number_text(stress) +
+               " Pa is a strain of " + number_text(stress / m.young) + " against its " +
+               "Young's modulus " + number_text(m.young) + " Pa" + not_finite_in_model_units("Pa"));
+    if (!dynamic || !(m.density > 0.0))
+      continue; // a static analysis discards initial velocities
+    // A body moving at v strains what it hits by v / c (c the wave speed, sqrt(E / rho)).
+    const double wave_speed = std::sqrt(m.young / m.density);
+    const double speed =
+        std::max(m.initial_velocity.norm(), std::abs(m.initial_angular_velocity) * size);
+    if (speed / wave_speed > largest_strain)
+      fail(spec, m.line,
+           "[materials." + m.name + "] " +
+               (m.initial_velocity.norm() >= std::abs(m.initial_angular_velocity) * size
+                    ? "initial_velocity = " + point_text(m.initial_velocity, 4) + " m/s"
+                    : "initial_angular_velocity = " + number_text(m.initial_angular_velocity) +
+                          " rad/s over the model's size " + number_text(size) + " m") +
+               " is " + number_text(speed / wave_speed) +
+               " times the speed of its elastic waves (sqrt(young / density) = " +
+               number_text(wave_speed) + " m/s), the strain of an impact at that speed" +
+               not_finite_in_model_units("m/s, rad/s"));
+  }
+}
+
+/// Digits of a position spent on the model's distance from the origin from which that is
+/// warned about: the displacements then keep 7 digits at most.
+constexpr double lost_digits_warning = 6.0;
+
+/// Below this fraction of the time an elastic wave takes to cross a math triangle, the
+/// inertia term of the step equations (Shi's M 2 / dt^2 on the diagonal) exceeds the
+/// stiffness by more than 1e16, double precision's digits: the elasticity is lost (and near
+/// 1e-300 s the term overflows: "the step displacement is not finite").
+constexpr double shortest_time_step_fraction = 1e-8;
+
+/// Refuses a fixed `time_step` so short that the step equations lose the stiffness, when
+/// the step equations have inertia (a dynamic analysis, or a static one with contact).
+void refuse_too_short_time_step(const CaseSpec& spec, bool has_inertia) {
+  if (!spec.analysis.time_step || !has_inertia)
+    return;
+  const double dt = *spec.analysis.time_step;
+  const double size = spec.cover_mesh.size;
+  const MaterialSpec* slowest = nullptr;
+  double transit = 0.0;
+  for (const MaterialSpec& m : spec.materials) {
+    if (!(m.density > 0.0))
+      continue;
+    const double t = size * std::sqrt(m.density / m.young);
+    if (t > transit) {
+      transit = t;
+      slowest = &m;
+    }
+  }
+  if (slowest == nullptr || dt >= shortest_time_step_fraction * transit)
+    return;
+  fail(spec, spec.analysis.time_step_line,
+       "[analysis] time_step = " + number_text(dt) +
+           " s is far shorter than the model needs: an elastic wave crosses one math triangle "
+           "([cover_mesh] size = " +
+           number_text(size) + " m) of material " + in_quotes(slowest->name) + " in " +
+           number_text(transit) + " s (size x sqrt(density / young)), and in a step shorter than " +
+           number_text(shortest_time_step_fraction) +
+           " of that the inertia of the step equations (mass x 2 / time_step^2) is more than "
+           "1e16 times the stiffness: double precision loses the elasticity, or overflows; "
+           "use time_step = \"auto\" or at least " +
+           number_text(shortest_time_step_fraction * transit) + " s (a step of 0.1 to 1 times " +
+           number_text(transit) + " s resolves the waves)");
+}
+
 } // namespace
 
 // ------------------------------------------------------------------------------------------
@@ -210,6 +376,10 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
     session.emplace();
   GeometryReadOptions read_options;
   read_options.curve_tolerance = spec.cover_mesh.curve_tolerance;
+  // A .geo is a program: one that loops or grows without end is stopped at these limits.
+  read_options.time_limit = spec.geometry_time_limit;
+  if (const double memory = memory_available().first; std::isfinite(memory))
+    read_options.memory_limit = memory;
 
   phase("reading " + spec.geometry.string());
   Clock::time_point start = Clock::now();
@@ -313,7 +483,8 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   const BoundingBox box = material_bounding_box(physical);
   const double size = box.is_empty() ? 1.0 : std::max(box.size().x(), box.size().y());
   const double tolerance = 1e-9 * size;
-  add_scale_warnings(size);
+  refuse_values_beyond_the_model(spec_, box, size);
+  add_scale_warnings(box, size);
   add_unused_curve_warnings();
 
   Scene scene;
@@ -406,6 +577,8 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   // with contact, bodies may rest on each other (Shi's static keeps the inertia term).
   const bool dynamic = spec_.analysis.kind == AnalysisKind::dynamic;
   const bool touching = ContactSystem::can_touch(model_);
+  // Shi's static analysis keeps the inertia term when there is contact.
+  refuse_too_short_time_step(spec_, dynamic || touching);
   if (!dynamic && !touching) {
     std::set<int> held;
     for (const SupportPoint& s : scene.supports)
@@ -464,10 +637,30 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
 
 CaseAnalysis::~CaseAnalysis() = default;
 
-void CaseAnalysis::add_scale_warnings(double model_size) {
+void CaseAnalysis::add_scale_warnings(const BoundingBox& box, double model_size) {
   const auto warn = [&](int line, const std::string& message) {
     warnings_.push_back(spec_.file.string() + ":" + std::to_string(line) + ": " + message);
   };
+  // Positions are doubles: a model at distance d from the origin holds them to 1e-16 d, so
+  // log10(d / size) of double's 16 digits are spent on where the model is, and a step's
+  // motion or an elastic displacement, 1e-3 of the size or less, keeps the rest minus 3
+  // (a 2 m plate at x = 1e15 m came out 1.5% off).
+  if (!box.is_empty() && model_size > 0.0) {
+    const Point2 centre = 0.5 * (box.min + box.max);
+    const double distance = centre.norm();
+    const double lost = std::log10(distance / model_size);
+    if (lost >= lost_digits_warning) {
+      warnings_.push_back(
+          geometry_name(spec_) + ": the model lies " + number_text(distance, 3) +
+          " m from the origin, " + number_text(distance / model_size, 3) + " times its size (" +
+          number_text(model_size, 3) + " m): its coordinates spend " + number_text(lost, 2) +
+          " of double precision's 16 significant digits on where it is, leaving the "
+          "displacements (a step's motion is 1e-3 of the size or less) about " +
+          number_text(std::max(0.0, 16.0 - lost - 3.0), 2) +
+          "; move the geometry near the origin (subtract " + point_text(centre) +
+          " from its coordinates, and from the monitors' points)");
+    }
+  }
   // A fixed time step longer than Shi's step for max_step_displacement (report 8.5 with the
   // velocity 0: a free body falls g dt^2 / 2 = g2 L in it) breaks the small-step assumption
   // of contact at the first step already: the stepper would warn when a step moves too far.
@@ -633,6 +826,71 @@ void create_output_dir(const fs::path& dir) {
 
 namespace {
 
+/// An exclusive lock on @p dir for the lifetime of the object: flock(2) on its lock file,
+/// which stays in the folder (the lock goes with the descriptor, also when the process is
+/// killed). It holds the locking process's id for the message of a refused second run.
+class OutputLock {
+public:
+  explicit OutputLock(const fs::path& dir) {
+    const fs::path file = dir / output_lock_file_name;
+    descriptor_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (descriptor_ < 0) {
+      throw InputError("cannot write " + quoted(file) + ": " +
+                       std::generic_category().message(errno) +
+                       "; make the output folder writable or choose another with -o DIR or "
+                       "[output] dir");
+    }
+    if (::flock(descriptor_, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      std::string holder;
+      char text[32] = {};
+      if (::pread(descriptor_, text, sizeof text - 1, 0) > 0)
+        holder = std::string(text).substr(0, std::string(text).find('\n'));
+      ::close(descriptor_);
+      descriptor_ = -1;
+      if (error == EWOULDBLOCK) {
+        throw InputError(
+            "another nmm run" + (holder.empty() ? std::string() : " (process " + holder + ")") +
+            " is writing into the output folder " + quoted(dir) + " (it holds " + quoted(file) +
+            "): two runs in one folder would mix their files; wait for it to end or stop it, "
+            "or give this run another folder with -o DIR");
+      }
+      // A file system without locks (ENOLCK, some network mounts): run unlocked.
+      return;
+    }
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    if (::ftruncate(descriptor_, 0) != 0 ||
+        ::pwrite(descriptor_, pid.data(), pid.size(), 0) != static_cast<ssize_t>(pid.size())) {
+      // The lock holds without the process id; the message of a second run just lacks it.
+    }
+  }
+  ~OutputLock() {
+    if (descriptor_ >= 0)
+      ::close(descriptor_);
+  }
+  OutputLock(const OutputLock&) = delete;
+  OutputLock& operator=(const OutputLock&) = delete;
+  OutputLock(OutputLock&&) = delete;
+  OutputLock& operator=(OutputLock&&) = delete;
+
+private:
+  int descriptor_ = -1;
+};
+
+/// Refuses a folder in @p dir under the name of a file that run_case() writes: the rename
+/// of the finished file onto it would fail only at the end of the run.
+void refuse_folders_named_like_outputs(const fs::path& dir) {
+  for (const char* name : {"summary.json", "history.csv", "case.pvd", checkpoint_file_name}) {
+    const fs::path file = dir / name;
+    std::error_code error;
+    if (fs::is_directory(file, error)) {
+      throw InputError(quoted(file) + " is a folder, where nmm run writes its " + name +
+                       " file; remove or rename the folder, or choose another output folder "
+                       "with -o DIR or [output] dir");
+    }
+  }
+}
+
 /// Removes the step, contact and boundary files of an earlier run in @p dir after step @p after
 /// (all with -1), and its checkpoint unless restarting (@p after >= 0).
 void remove_old_output(const fs::path& dir, long after) {
@@ -710,9 +968,14 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   std::vector<std::string> restart_warnings;
   std::optional<CheckpointRun> restored;
   std::optional<HistoryWriter> history;
+  std::optional<OutputLock> lock;
   if (options.restart) {
-    // Everything is checked before anything in the folder changes.
+    // Everything is checked before anything in the folder changes (but the lock file).
+    std::error_code error;
+    if (fs::is_directory(dir, error))
+      lock.emplace(dir);
     restored = read_checkpoint(checkpoint_file, stepper, fingerprint, case_hash, restart_warnings);
+    refuse_folders_named_like_outputs(dir);
     const std::size_t n_points = step_points(model).size();
     if (restored->initial_points.size() != n_points ||
         restored->monitor_starts.size() != spec.monitors.size())
@@ -726,6 +989,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     remove_old_output(dir, restored->step);
   } else {
     create_output_dir(dir);
+    lock.emplace(dir);
+    refuse_folders_named_like_outputs(dir);
     remove_old_output(dir, -1);
   }
 
@@ -859,7 +1124,10 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     } catch (const std::exception&) { // the first error is the one to report
     }
     try {
-      update_summary(error.what());
+      // An output that could not be written (a full disk, a file-size limit) is a failure of
+      // the run, not of the case: its status says so ("failed: disk full: ...").
+      const bool output_failed = dynamic_cast<const OutputWriteError*>(&error) != nullptr;
+      update_summary(output_failed ? "failed: " + std::string(error.what()) : error.what());
       write_summary_json(summary_file, summary);
     } catch (const std::exception&) { // the first error is the one to report
     }

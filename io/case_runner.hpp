@@ -97,8 +97,9 @@ private:
   [[nodiscard]] std::unique_ptr<ContactSystem> make_contact_system(double penalty) const;
   /// Warnings about scales that the case file alone cannot judge (docs/case-file.md,
   /// "Checks across tables and warnings"): a fixed time step longer than Shi's for
-  /// max_step_displacement, nmm blocks much smaller than the math triangles.
-  void add_scale_warnings(double model_size);
+  /// max_step_displacement, nmm blocks much smaller than the math triangles, a model so far
+  /// from the origin (its material's bounding box @p box) that its coordinates lose digits.
+  void add_scale_warnings(const BoundingBox& box, double model_size);
   /// A warning for every Physical Curve that runs through the inside of a block but is no
   /// joint, [[boundary]] or [[load]] of the case: a joint the case forgot does not cut.
   void add_unused_curve_warnings();
@@ -187,8 +188,11 @@ struct RunResult {
 /// in the folder are removed first so that the folder holds one run, except with
 /// RunOptions::restart, which continues them from the checkpoint's step.
 /// @pre run_case() was not called on @p analysis before.
-/// @throws InputError naming the folder when it cannot be created or written, or the
-///         checkpoint when a restart cannot continue from it (read_checkpoint()).
+/// The folder is locked (output_lock_file_name) for the run.
+/// @throws InputError naming the folder when it cannot be created or written, when another
+///         run holds its lock, when a folder in it has the name of a file the run writes
+///         (`checkpoint.nmm`, ...), or the checkpoint when a restart cannot continue from it
+///         (read_checkpoint()).
 /// @throws NumericalError (or anything else) when a step fails; the last completed step,
 ///         the .pvd and summary.json (status = the error message) are written first.
 RunResult run_case(CaseAnalysis& analysis, const RunOptions& options);
@@ -201,6 +205,11 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options);
 /// step in ten cut (and more than ten).
 [[nodiscard]] std::vector<std::string>
 contact_warnings(const StepperCounters& counters, double max_penetration, double step_limit);
+
+/// The file in the output folder that run_case() locks (flock) while it runs: a second run
+/// into the same folder is refused. It stays in the folder and holds the last locker's
+/// process id.
+inline constexpr const char* output_lock_file_name = ".nmm.lock";
 
 /// Creates @p dir (and its parents) when missing.
 /// @throws InputError naming the folder when it cannot be created or is a file.

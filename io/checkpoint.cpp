@@ -37,12 +37,20 @@ std::uint64_t fnv1a(std::string_view bytes) {
   return hash;
 }
 
-/// The bytes of @p file, or nothing when it cannot be read.
+/// The bytes of @p file, or nothing when it cannot be opened or read (a folder, say: the
+/// stream opens it and fails at the first read by throwing).
 std::optional<std::string> read_bytes(const fs::path& file) {
+  std::error_code error;
+  if (fs::is_directory(file, error))
+    return std::nullopt;
   std::ifstream in(file, std::ios::binary);
   if (!in)
     return std::nullopt;
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  try {
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
 }
 
 std::string hex(std::uint64_t value) {
@@ -109,6 +117,11 @@ CheckpointRun read_checkpoint(const fs::path& file,
                               std::uint64_t case_hash,
                               std::vector<std::string>& warnings) {
   const std::string name = file.string();
+  std::error_code error;
+  if (fs::is_directory(file, error))
+    throw InputError(name + " is a folder, not a checkpoint file (nmm writes its checkpoint "
+                            "under that name); remove or rename the folder, and run the case "
+                            "from the start without --restart");
   const std::optional<std::string> read = read_bytes(file);
   if (!read) {
     throw InputError("no checkpoint " + name +

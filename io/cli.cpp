@@ -2,6 +2,7 @@
 // io/cli.cpp — the `nmm` command: run, mesh, check, demo. The only place that catches
 // everything and exits (exit codes: 0 ok, 2 input error, 3 numerical failure, 4 internal
 // error, 130 interrupted).
+#include "io/atomic_file.hpp"
 #include "io/case_file.hpp"
 #include "io/case_runner.hpp"
 #include "io/checkpoint.hpp"
@@ -143,6 +144,12 @@ int run_command(const RunArguments& args, bool is_bundled_example) {
   nmm::RunResult result;
   try {
     result = nmm::run_case(analysis, options);
+  } catch (const nmm::OutputWriteError&) {
+    // A disk that filled or a file-size limit during the run: the files up to then stand.
+    printer.finish();
+    std::cerr << "nmm: the run stopped; what it wrote so far is in " << dir.string()
+              << " (summary.json has the reason)\n";
+    throw;
   } catch (const nmm::InputError&) {
     // The output folder could not be created or written: there is nothing to point to.
     printer.finish();
@@ -317,6 +324,9 @@ int run(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   keep_freed_memory();
+  // A file-size limit (ulimit -f) would kill the process by SIGXFSZ in the middle of a write;
+  // ignored, the write fails with EFBIG and the run stops with a message and its files.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     return run(argc, argv);
   } catch (const nmm::InputError& e) {

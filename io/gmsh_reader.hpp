@@ -49,6 +49,15 @@ struct GeometryReadOptions {
   /// bounding box of all Physical Surfaces. Straight lines are never subdivided, and
   /// curves read from a mesh (.msh) use their mesh nodes whatever this value.
   double curve_tolerance = 0.0;
+  /// Longest wall time (s) reading a `.geo` may take; 0: no limit. With a time or memory
+  /// limit, a `.geo` is read first in a child process (fork) that is stopped at the limit,
+  /// so that a file that loops forever (an endless `For`, a recursive `Macro`) or grows
+  /// without bound (millions of points) cannot hang nmm; then it is read in this process.
+  /// `.msh` files are data, read only once.
+  double time_limit = 0.0;
+  /// Most memory (bytes) reading a `.geo` may add to the process (RLIMIT_AS of the child:
+  /// its address space at the fork plus this); 0: no limit.
+  double memory_limit = 0.0;
 };
 
 /// Reads the physical groups of a gmsh file into the physical mesh (DESIGN.md, "Geometry").
@@ -76,7 +85,8 @@ struct GeometryReadOptions {
 /// clockwise); `source` is @p file as given. The geometry must lie in the plane z = 0.
 ///
 /// @throws InputError naming the file and, where it applies, the line (gmsh's own message
-///         for .geo syntax errors) or the physical group, when: the file is missing,
+///         for .geo syntax errors) or the physical group, when: reading a .geo exceeds
+///         GeometryReadOptions::time_limit or memory_limit; the file is missing,
 ///         unreadable or not .geo/.msh; gmsh reports an error; there is no Physical Surface;
 ///         a surface's boundary does not close; a curve cannot be sampled within the
 ///         tolerance; the tolerance is negative or not finite; or validation fails.

@@ -4,10 +4,15 @@
 #include "io/atomic_file.hpp"
 #include "mesh/error.hpp"
 
+#include <fcntl.h>
+#include <linux/falloc.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <system_error>
 
 namespace nmm {
@@ -84,15 +89,17 @@ std::string history_header(std::span<const std::string> monitor_names) {
 
 HistoryWriter::HistoryWriter(std::filesystem::path file, std::vector<std::string> monitor_names)
     : file_(std::move(file)), n_monitors_(monitor_names.size()) {
-  stream_ = std::fopen(file_.c_str(), "w");
-  if (stream_ == nullptr) {
+  descriptor_ = ::open(file_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
+  if (descriptor_ < 0) {
     throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
                      "; choose a writable output folder with -o DIR or [output] dir");
   }
-  const std::string header = history_header(monitor_names) + '\n';
-  if (std::fputs(header.c_str(), stream_) < 0 || std::fflush(stream_) != 0)
-    throw InputError("cannot write " + file_.string() + ": " + system_reason(errno));
-  bytes_ = header.size();
+  try {
+    append(history_header(monitor_names) + '\n', "its header");
+  } catch (...) {
+    static_cast<void>(::close(descriptor_)); // no destructor runs for a failed constructor
+    throw;
+  }
 }
 
 HistoryWriter::HistoryWriter(std::filesystem::path file,
@@ -129,37 +136,55 @@ HistoryWriter::HistoryWriter(std::filesystem::path file,
   std::filesystem::resize_file(file_, keep_bytes, error);
   if (error)
     fail(error.message());
-  stream_ = std::fopen(file_.c_str(), "a");
-  if (stream_ == nullptr)
+  descriptor_ = ::open(file_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (descriptor_ < 0)
     fail(system_reason(errno));
 }
 
 HistoryWriter::~HistoryWriter() {
-  if (stream_ != nullptr)
-    static_cast<void>(std::fclose(stream_));
+  if (descriptor_ >= 0)
+    static_cast<void>(::close(descriptor_));
+}
+
+void HistoryWriter::append(const std::string& text, const std::string& what) {
+  // One write(2) puts the text on disk (no buffer to flush); a write cut short by a full
+  // disk or a file-size limit is taken back, so the file always ends with a whole row.
+  std::string_view rest = text;
+  while (!rest.empty()) {
+    const ssize_t written = ::write(descriptor_, rest.data(), rest.size());
+    if (written < 0 && errno == EINTR)
+      continue;
+    if (written <= 0) {
+      const int error = written < 0 ? errno : ENOSPC;
+      if (::ftruncate(descriptor_, static_cast<off_t>(bytes_)) != 0) {
+        // The row stays cut; the message below is still the one to give.
+      }
+      throw OutputWriteError(write_failure_message(file_, error, what));
+    }
+    rest.remove_prefix(static_cast<std::size_t>(written));
+  }
+  bytes_ += text.size();
 }
 
 void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorValues> monitors) {
   NMM_ASSERT(monitors.size() == n_monitors_, "one MonitorValues per monitor");
-  int status =
-      std::fprintf(stream_, "%ld,%.17g,%.17g,%d,%d,%.17g", report.step, report.time, report.dt,
-                   report.open_close_iterations, report.contacts, report.kinetic_energy);
-  long written = status;
-  for (const MonitorValues& monitor : monitors) {
-    for (const double value : monitor.values()) {
-      if (status >= 0)
-        written += status = std::fprintf(stream_, ",%.17g", value);
-    }
-  }
-  if (status >= 0)
-    written += status =
-        std::fprintf(stream_, ",%.17g,%d,%.17g,%.17g,%.17g", report.load_work, report.step_cuts,
-                     report.max_penetration, report.lock_excess, report.slide_feed);
-  if (status >= 0)
-    bytes_ += static_cast<std::uintmax_t>(written) + 1;
-  if (status < 0 || std::fputc('\n', stream_) == EOF || std::fflush(stream_) != 0)
-    throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
-                     "; is the disk full?");
+  std::string row;
+  row.reserve(32 * (11 + 9 * monitors.size()));
+  char field[64];
+  const auto add = [&](int length) {
+    row.append(field, static_cast<std::size_t>(std::clamp(length, 0, int{sizeof field} - 1)));
+  };
+  add(std::snprintf(field, sizeof field, "%ld,%.17g,%.17g,%d,%d,%.17g", report.step, report.time,
+                    report.dt, report.open_close_iterations, report.contacts,
+                    report.kinetic_energy));
+  for (const MonitorValues& monitor : monitors)
+    for (const double value : monitor.values())
+      add(std::snprintf(field, sizeof field, ",%.17g", value));
+  add(std::snprintf(field, sizeof field, ",%.17g,%d", report.load_work, report.step_cuts));
+  add(std::snprintf(field, sizeof field, ",%.17g,%.17g,%.17g", report.max_penetration,
+                    report.lock_excess, report.slide_feed));
+  row += '\n';
+  append(row, "the row of step " + std::to_string(report.step) + " (the rows before it stay)");
 }
 
 std::string json_string(std::string_view text) {
@@ -303,14 +328,76 @@ std::string summary_json(const RunSummary& s) {
   return out;
 }
 
+namespace {
+
+/// Blocks each summary.json keeps allocated beyond its end (fallocate, FALLOC_FL_KEEP_SIZE),
+/// so that the summary of a run that fills the disk can still be written over it.
+constexpr off_t summary_reserve = 64 * 1024;
+
+/// Writes all of @p text at offset @p offset of @p descriptor; false on failure (errno set).
+bool write_all_at(int descriptor, std::string_view text, off_t offset) {
+  while (!text.empty()) {
+    const ssize_t written = ::pwrite(descriptor, text.data(), text.size(), offset);
+    if (written < 0 && errno == EINTR)
+      continue;
+    if (written <= 0) {
+      if (written == 0)
+        errno = ENOSPC;
+      return false;
+    }
+    text.remove_prefix(static_cast<std::size_t>(written));
+    offset += written;
+  }
+  return true;
+}
+
+/// Closes @p descriptor, keeping errno (of the failure before it) unless closing fails.
+bool close_keeping_errno(int descriptor, bool ok) {
+  const int error = errno;
+  const bool closed = ::close(descriptor) == 0;
+  if (closed)
+    errno = error;
+  return ok && closed;
+}
+
+/// Writes @p text as the new file @p file with summary_reserve bytes allocated after it.
+bool write_reserving(const std::filesystem::path& file, const std::string& text) {
+  const int descriptor = ::open(file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (descriptor < 0)
+    return false;
+  // No reserve on a file system without fallocate, or a disk too full for it: the summary
+  // is still written.
+  static_cast<void>(::fallocate(descriptor, FALLOC_FL_KEEP_SIZE, 0,
+                                static_cast<off_t>(text.size()) + summary_reserve));
+  return close_keeping_errno(descriptor, write_all_at(descriptor, text, 0));
+}
+
+/// Writes @p text over the existing @p file in place, into the blocks it holds (its
+/// reserve): what a full disk still allows. Not atomic: a reader may see it half written.
+bool overwrite_in_place(const std::filesystem::path& file, const std::string& text) {
+  const int descriptor = ::open(file.c_str(), O_WRONLY | O_CLOEXEC);
+  if (descriptor < 0)
+    return false;
+  const bool ok = write_all_at(descriptor, text, 0) &&
+                  ::ftruncate(descriptor, static_cast<off_t>(text.size())) == 0 &&
+                  ::fsync(descriptor) == 0;
+  return close_keeping_errno(descriptor, ok);
+}
+
+} // namespace
+
 void write_summary_json(const std::filesystem::path& file, const RunSummary& summary) {
   const std::string text = summary_json(summary);
-  write_file_atomically(file, [&](const std::filesystem::path& temporary) {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    return static_cast<bool>(out);
-  });
+  try {
+    write_file_atomically(file, [&](const std::filesystem::path& temporary) {
+      return write_reserving(temporary, text);
+    });
+  } catch (const OutputWriteError&) {
+    // The disk is full: the summary of a run that ends so must still say why.
+    std::error_code error;
+    if (!std::filesystem::is_regular_file(file, error) || !overwrite_in_place(file, text))
+      throw;
+  }
 }
 
 } // namespace nmm

@@ -8,7 +8,6 @@
 #include "solver/time_stepper.hpp"
 
 #include <array>
-#include <cstdio>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -46,9 +45,10 @@ inline constexpr std::array<std::string_view, 9> monitor_value_names{"x",  "y", 
 /// `load_work`.
 [[nodiscard]] std::string history_header(std::span<const std::string> monitor_names);
 
-/// history.csv, written row by row and flushed after every row, so that a run that stops
-/// at any moment leaves every completed step on disk. Reals are written with 17
-/// significant digits (%.17g: they read back bit for bit).
+/// history.csv, written row by row, each row by one write(2) (no buffer), so that a run
+/// that stops at any moment leaves every completed step on disk; a row that the disk or a
+/// file-size limit cuts short is taken back, so the file always ends with a whole row.
+/// Reals are written with 17 significant digits (%.17g: they read back bit for bit).
 class HistoryWriter {
 public:
   /// Creates (truncates) @p file and writes the header.
@@ -68,8 +68,10 @@ public:
   HistoryWriter(HistoryWriter&&) = delete;
   HistoryWriter& operator=(HistoryWriter&&) = delete;
 
-  /// Appends the row of one step. @pre monitors.size() == the number of monitor names.
-  /// @throws InputError naming the file when the write fails (disk full).
+  /// Appends the row of one step, whole or not at all.
+  /// @pre monitors.size() == the number of monitor names.
+  /// @throws OutputWriteError naming the file and the reason ("disk full: ...", "file too
+  ///         large: ...") when the write fails; the file then ends with the row before.
   void write_row(const StepReport& report, std::span<const MonitorValues> monitors);
 
   [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
@@ -77,10 +79,14 @@ public:
   [[nodiscard]] std::uintmax_t bytes() const noexcept { return bytes_; }
 
 private:
+  /// Writes @p text at the end, whole, or truncates the file back to bytes_ and throws
+  /// OutputWriteError (@p what names the text in the message).
+  void append(const std::string& text, const std::string& what);
+
   std::filesystem::path file_;
   std::size_t n_monitors_ = 0;
   std::uintmax_t bytes_ = 0;
-  std::FILE* stream_ = nullptr;
+  int descriptor_ = -1;
 };
 
 /// Everything summary.json holds. The first group of members is DESIGN.md's contract, the
@@ -121,7 +127,9 @@ struct RunSummary {
 /// wall-clock seconds (6), non-finite reals as null.
 [[nodiscard]] std::string summary_json(const RunSummary& summary);
 
-/// Writes summary_json(@p summary) to @p file atomically (as `file.tmp`, then renamed).
+/// Writes summary_json(@p summary) to @p file atomically (as `file.tmp`, then renamed), with
+/// 64 KiB allocated beyond its end: when the disk is full, so that the temporary file
+/// cannot be written, the summary is written over the old one in place, into those blocks.
 /// @throws InputError naming the file or directory when it cannot be written.
 void write_summary_json(const std::filesystem::path& file, const RunSummary& summary);
 

@@ -688,6 +688,32 @@ std::vector<BadCase> bad_cases() {
        "contains '.'"},
       {"TopLevelWrongType", "geometry = 5 # <-\n", "geometry must be a string in double quotes"},
       {"EmptyGeometry", "geometry = \"\" # <-\n", "geometry is empty"},
+      // values no model can hold (issue 43): finite in TOML, not in the step equations
+      {"ForceBeyondDouble", minimal + "[[load]]\npoint = \"P\"\nforce = [1.0e308, 0.0] # <-\n",
+       "[[load]] force is 1e+308, which is not finite in the model's units"},
+      {"GravityBeyondDouble", minimal + "[[load]]\ngravity = [0.0, -1.0e300] # <-\n",
+       "[[load]] gravity is -1e+300, which is not finite in the model's units"},
+      {"VelocityBeyondDouble",
+       head +
+           "[materials.rock]\ndensity = 2600.0\nyoung = 5.0e9\npoisson = 0.25\n"
+           "initial_velocity = [1.0e200, 0.0] # <-\n" +
+           analysis,
+       "[materials.rock] initial_velocity is 1e+200, which is not finite in the model's units"},
+      {"TractionBeyondDouble", minimal + "[[load]]\ncurve = \"C\"\ntraction = [0, -1e150] # <-\n",
+       "overflow double precision"},
+      {"PressureBeyondDouble", minimal + "[[load]]\ncurve = \"C\"\npressure = 1e120 # <-\n",
+       "[[load]] pressure is 1e+120"},
+      {"InitialStressBeyondDouble",
+       head + rock + "initial_stress = [0, -1e200, 0] # <-\n" + analysis,
+       "[materials.rock] initial_stress is -1e+200"},
+      {"DensityBeyondDouble", head + "[materials.rock]\ndensity = 1e101 # <-\n",
+       "density is 1e+101"},
+      {"PenaltyMakesTheSystemSingular", minimal + "penalty = 1e30 # <-\n",
+       "[analysis] penalty = 1e+30 is out of range; springs more than 1e12 times the largest "
+       "Young's modulus make the step system singular"},
+      {"PenaltyStiffnessMakesTheSystemSingular", minimal + "penalty_stiffness = 1e25 # <-\n",
+       "[analysis] penalty_stiffness = 1e+25 N/m is 2e+15 times the largest Young's modulus "
+       "(5e+09 Pa); springs more than 1e12 times"},
       {"HugeWholeNumber", head + rock + "[analysis]\nsteps = 1e300 # <-\n",
        "steps = 1e+300 is out of range; it must be from 1 to 100000000"},
       {"DateForNumber", head + "[materials.rock]\nyoung = 1979-05-27 # <-\n",

@@ -8,7 +8,10 @@
 
 #include "../../support/case_fixtures.hpp"
 #include "../../support/json_reader.hpp"
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <cmath>
@@ -553,6 +556,163 @@ TEST_F(CaseRunner, RestartOfAnotherModelIsRefusedAndAnEditedCaseIsWarnedAbout) {
   EXPECT_EQ(lines_of(read_text(dir() / "out" / "history.csv")).size(), 10u);
   ASSERT_EQ(result.warnings.size(), 1u);
   expect_all(result.warnings[0], {"case file changed since the checkpoint"});
+}
+
+// ---------------------------------------------------------------------------------------
+// Values the model cannot hold (issue 43): refused before anything is written
+
+TEST_F(CaseRunner, LoadsAndStatesBeyondTheModelAreRefusedNamingTheKeyAndItsLine) {
+  // Each value is finite and below the reader's 1e100, but strains the 2 m plate of 1 GPa
+  // far beyond 1e3 (a point force of 1e20 N used to end in "contradictory supports" after
+  // the first step file was written).
+  const std::string traction = "curve = \"right\"\ntraction = [1.0e5, 0.0]";
+  const std::string dynamic = "kind = \"dynamic\"\nsteps = 3";
+  const std::string rock = "poisson = 0.25";
+  const struct {
+    std::string from;
+    std::string to;
+    int line;
+    std::vector<std::string> parts;
+  } cases[] = {
+      {traction,
+       "point = \"anchor\"\nforce = [1.0e20, 0.0]",
+       13,
+       {"[[load]] force = (1e+20, 0) N at point \"anchor\"", "a strain of 5e+10",
+        "which is not finite in the model's units", "(N, SI)"}},
+      {traction,
+       "gravity = [0.0, -1.0e60]",
+       13,
+       {"[[load]] gravity = (0, -1e+60) m/s^2 weighs on material \"rock\"",
+        "density x gravity x model size", "not finite in the model's units"}},
+      {"density = 2000.0", "density = 1.0e80", 13, {"[[load]] gravity"}}, // with the next
+      {traction,
+       "curve = \"right\"\ntraction = [0.0, 1.0e13]",
+       13,
+       {"[[load]] traction = (0, 1e+13) Pa on curve \"right\"", "a strain of 1e+04"}},
+      {traction, "curve = \"right\"\npressure = 1.0e13", 13, {"its pressure of 1e+13 Pa"}},
+      {traction,
+       "curve = \"right\"\nwater_level = 1.0e10",
+       13,
+       {"its pressure (with the water's at the model's lowest point) of 9.81e+13 Pa"}},
+      {rock,
+       rock + "\ninitial_stress = [0.0, -1.0e20, 0.0]",
+       6,
+       {"[materials.rock] initial_stress of 1e+20 Pa is a strain of 1e+11"}},
+  };
+  for (const auto& c : cases) {
+    std::string text = replaced(plate_case, c.from, c.to);
+    if (c.from == "density = 2000.0")
+      text = replaced(text, traction, "gravity = [0.0, -1.0e80]");
+    SCOPED_TRACE(c.to);
+    expect_all(error_of(text), [&] {
+      std::vector<std::string> parts{case_prefix(dir(), c.line)};
+      parts.insert(parts.end(), c.parts.begin(), c.parts.end());
+      return parts;
+    }());
+  }
+  // Velocities: an impact strains by v / c (c = sqrt(1e9 / 2000) = 707 m/s).
+  const std::string moving = replaced(plate_case, "kind = \"static\"\nsteps = 3", dynamic);
+  expect_all(error_of(replaced(moving, rock, rock + "\ninitial_velocity = [1.0e90, 0.0]")),
+             {case_prefix(dir(), 6), "[materials.rock] initial_velocity = (1e+90, 0) m/s is",
+              "times the speed of its elastic waves", "not finite in the model's units"});
+  expect_all(error_of(replaced(moving, rock, rock + "\ninitial_angular_velocity = 1.0e90")),
+             {"[materials.rock] initial_angular_velocity = 1e+90 rad/s over the model's size"});
+  // Large but meaningful values pass: a strain of 1e-2, a fast impact (v / c = 1.4).
+  EXPECT_NO_THROW(CaseAnalysis(read_case_file(
+      case_file(replaced(plate_case, traction, "point = \"anchor\"\nforce = [2.0e7, 0.0]")))));
+  EXPECT_NO_THROW(CaseAnalysis(read_case_file(
+      case_file(replaced(moving, rock, rock + "\ninitial_velocity = [1000.0, 0.0]")))));
+}
+
+TEST_F(CaseRunner, TimeStepFarShorterThanAWaveCrossingATriangleIsRefusedWithTheScale) {
+  // A wave crosses a 0.3 m triangle of the plate (1 GPa, 2000 kg/m^3) in 0.3 / 707 =
+  // 4.243e-4 s; below 1e-8 of that the inertia term buries the stiffness (1e-300 s: "the
+  // step displacement is not finite").
+  const std::string dynamic = replaced(plate_case, "kind = \"static\"\nsteps = 3",
+                                       "kind = \"dynamic\"\nsteps = 3\ntime_step = 1e-300");
+  expect_all(error_of(dynamic),
+             {case_prefix(dir(), 19), "[analysis] time_step = 1e-300 s is far shorter",
+              "of material \"rock\" in 0.0004243 s",
+              "time_step = \"auto\" or at least 4.243e-12 s"});
+  EXPECT_NO_THROW(CaseAnalysis(read_case_file(case_file(replaced(dynamic, "1e-300", "1e-9")))));
+  // Without contact a static analysis has no inertia: its time step only places the loads
+  // in time.
+  EXPECT_NO_THROW(CaseAnalysis(read_case_file(case_file(
+      replaced(plate_case, "kind = \"static\"", "kind = \"static\"\ntime_step = 1e-300")))));
+}
+
+TEST_F(CaseRunner, ModelFarFromTheOriginIsWarnedAboutWithTheDigitsItCosts) {
+  // plate.geo moved to x = 1e9 m: 5e8 times its size, 8.7 of 16 digits spent on where it is.
+  std::string geometry = testing::plate_geo;
+  for (const auto& [from, to] : {std::pair{"Point(1) = {0,", "Point(1) = {1e9,"},
+                                 std::pair{"Point(2) = {2,", "Point(2) = {1e9 + 2,"},
+                                 std::pair{"Point(3) = {2,", "Point(3) = {1e9 + 2,"},
+                                 std::pair{"Point(4) = {0,", "Point(4) = {1e9,"},
+                                 std::pair{"Point(5) = {1,", "Point(5) = {1e9 + 1,"}})
+    geometry = replaced(geometry, from, to);
+  testing::write_text(dir() / "far.geo", geometry);
+  std::string text = replaced(plate_case, "plate.geo", "far.geo");
+  text = replaced(text, "point = [2.0, 1.0]", "point = [1000000002.0, 1.0]");
+  CaseAnalysis far(read_case_file(case_file(text)));
+  ASSERT_EQ(far.warnings().size(), 1u);
+  expect_all(far.warnings()[0],
+             {"far.geo: the model lies 1e+09 m from the origin, 5e+08 times its size (2 m)",
+              "spend 8.7 of double precision's 16 significant digits",
+              "move the geometry near the origin (subtract (1000000001, 0.5)"});
+  const RunResult result = run_case(far, {});
+  const testing::Json summary = parse_json(read_text(dir() / "out" / "summary.json"));
+  ASSERT_EQ(summary.at("warnings").items.size(), 1u);
+  EXPECT_EQ(summary.at("warnings").items[0].string, far.warnings()[0]);
+  EXPECT_EQ(result.warnings, far.warnings());
+  // At the origin, or at a million metres for a 2 m plate (5.7 digits), no warning.
+  EXPECT_TRUE(CaseAnalysis(read_case_file(case_file(plate_case))).warnings().empty());
+}
+
+// ---------------------------------------------------------------------------------------
+// The output folder: names taken by folders, and one run at a time
+
+TEST_F(CaseRunner, FolderNamedLikeAnOutputFileIsAnInputErrorBeforeAnythingIsWritten) {
+  CaseAnalysis analysis(read_case_file(case_file(plate_case)));
+  fs::create_directories(dir() / "out" / "checkpoint.nmm" / "inside");
+  try {
+    static_cast<void>(run_case(analysis, {}));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    expect_all(error.what(), {(dir() / "out" / "checkpoint.nmm").string(), "is a folder",
+                              "remove or rename the folder"});
+  }
+  EXPECT_FALSE(fs::exists(dir() / "out" / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir() / "out" / "history.csv"));
+  // A restart from it: an input error too (it was an internal error, exit code 4).
+  expect_all(restart_error(dir() / "case.toml"),
+             {"checkpoint.nmm is a folder, not a checkpoint file", "without --restart"});
+}
+
+TEST_F(CaseRunner, SecondRunIntoALockedFolderIsRefusedNamingTheFolder) {
+  // Another process's run holds the folder's lock (flock on its own descriptor).
+  fs::create_directories(dir() / "out");
+  const fs::path lock_file = dir() / "out" / output_lock_file_name;
+  testing::write_text(lock_file, "12345\n");
+  const int other = ::open(lock_file.c_str(), O_RDWR);
+  ASSERT_GE(other, 0);
+  ASSERT_EQ(::flock(other, LOCK_EX | LOCK_NB), 0);
+  CaseAnalysis analysis(read_case_file(case_file(plate_case)));
+  try {
+    static_cast<void>(run_case(analysis, {}));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& error) {
+    expect_all(error.what(), {"another nmm run (process 12345) is writing into the output folder",
+                              (dir() / "out").string(), "-o DIR"});
+  }
+  EXPECT_FALSE(fs::exists(dir() / "out" / "summary.json"));
+  ::close(other);
+  // Released, the folder is free again; the run's lock goes with it.
+  CaseAnalysis again(read_case_file(case_file(plate_case)));
+  EXPECT_EQ(run_case(again, {}).steps, 3);
+  EXPECT_TRUE(fs::exists(dir() / "out" / "summary.json"));
+  const int after = ::open(lock_file.c_str(), O_RDWR);
+  EXPECT_EQ(::flock(after, LOCK_EX | LOCK_NB), 0) << "released when the run ends";
+  ::close(after);
 }
 
 } // namespace

@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <clocale>
 #include <cmath>
 #include <filesystem>
@@ -561,6 +562,66 @@ TEST(GmshSessionTest, ReadersOpenAndCloseTheirOwnSessionAndRestoreTheLocale) {
   EXPECT_EQ(physical.n_regions(), 1);
   EXPECT_FALSE(GmshSession::is_alive());
   EXPECT_EQ(std::setlocale(LC_ALL, nullptr), locale);
+}
+
+// ------------------------------------------------------------------------------------------
+// A .geo is a program: limits on reading it (issue 43)
+
+/// A unit square "rock" followed by @p tail (gmsh code run after it).
+std::string square_then(const std::string& tail) {
+  return "Point(1) = {0, 0, 0};\nPoint(2) = {1, 0, 0};\nPoint(3) = {1, 1, 0};\n"
+         "Point(4) = {0, 1, 0};\nLine(1) = {1, 2};\nLine(2) = {2, 3};\nLine(3) = {3, 4};\n"
+         "Line(4) = {4, 1};\nCurve Loop(1) = {1, 2, 3, 4};\nPlane Surface(1) = {1};\n"
+         "Physical Surface(\"rock\") = {1};\n" +
+         tail;
+}
+
+TEST(GmshReader, EndlessGeoIsStoppedAtTheTimeLimitAndAGoodOneReadsAsWithoutLimits) {
+  const TempDir dir("nmm_geo_limits");
+  const fs::path endless = dir.path() / "endless.geo";
+  std::ofstream(endless) << square_then("For k In {1:1e15}\n  x = k;\nEndFor\n");
+  GeometryReadOptions options;
+  options.time_limit = 1.0;
+  const auto start = std::chrono::steady_clock::now();
+  const std::string message =
+      input_error_of([&] { static_cast<void>(read_physical_mesh(endless, options)); });
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_TRUE(contains(message, endless.string() + ": reading the geometry was stopped after "
+                                                   "1 s, the case's geometry_time_limit"))
+      << message;
+  EXPECT_TRUE(contains(message, "raise geometry_time_limit")) << message;
+  EXPECT_LT(seconds, 10.0);
+  // The session is still usable, and a good file gives what it gives without limits.
+  const fs::path good = dir.path() / "good.geo";
+  std::ofstream(good) << square_then("");
+  options.memory_limit = 2e9;
+  const PhysicalMesh limited = read_physical_mesh(good, options);
+  const PhysicalMesh free = read_physical_mesh(good);
+  ASSERT_EQ(limited.regions.size(), 1u);
+  ASSERT_EQ(free.regions.size(), 1u);
+  EXPECT_EQ(limited.regions[0].polygons[0].outer, free.regions[0].polygons[0].outer);
+}
+
+TEST(GmshReader, GeoThatGrowsWithoutBoundIsStoppedAtTheMemoryLimit) {
+#if defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer's allocator does not fail cleanly under an address-space limit: the
+  // child ran for minutes (2026-12-01).
+  GTEST_SKIP() << "an address-space limit and AddressSanitizer do not mix";
+#endif
+  const TempDir dir("nmm_geo_limits");
+  const fs::path points = dir.path() / "points.geo";
+  std::ofstream(points) << square_then("For k In {1:100000000}\n  Point(100 + k) = {k, 5, 0};\n"
+                                       "EndFor\n");
+  GeometryReadOptions options;
+  options.time_limit = 600.0;
+  options.memory_limit = 3e7;
+  const std::string message =
+      input_error_of([&] { static_cast<void>(read_physical_mesh(points, options)); });
+  EXPECT_TRUE(contains(message, points.string() + ": reading the geometry (in a child process"))
+      << message;
+  EXPECT_TRUE(contains(message, "ran out of the 0.03 GB it may use")) << message;
+  EXPECT_TRUE(contains(message, "NMM_MEMORY_LIMIT")) << message;
 }
 
 } // namespace

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // history.csv, summary.json, the step data and the progress text, checked piece by piece.
+#include "io/atomic_file.hpp"
 #include "io/case_runner.hpp"
 #include "io/history.hpp"
 #include "io/progress.hpp"
@@ -9,9 +10,11 @@
 #include "../../support/case_fixtures.hpp"
 #include "../../support/json_reader.hpp"
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -85,6 +88,55 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   EXPECT_EQ(std::stod(fields[5]), 1.0e-300);
   EXPECT_EQ(std::stod(fields[6]), std::numbers::pi);
   EXPECT_EQ(std::stod(fields[14]), -2.5e9);
+}
+
+TEST(History, RowCutShortByAFileSizeLimitIsTakenBackAndTheErrorSaysWhy) {
+  // A file-size limit (ulimit -f) of the header and two and a half rows: the third row is
+  // cut by the kernel part way. It must leave the file as it was after the second row.
+  const TempDir dir("nmm_history");
+  const auto file = dir.path() / "history.csv";
+  StepReport report;
+  report.time = 0.1 + 0.2;
+  report.dt = 1.0 / 3.0;
+  const std::vector<MonitorValues> monitors{MonitorValues{}};
+  std::string expected;
+  {
+    HistoryWriter reference(dir.path() / "reference.csv", {"m"});
+    for (report.step = 1; report.step <= 3; ++report.step)
+      reference.write_row(report, monitors);
+    expected = read_text(dir.path() / "reference.csv");
+  }
+  const std::size_t row =
+      (expected.size() - history_header(std::vector<std::string>{"m"}).size() - 1) / 3;
+  const std::size_t two_rows = expected.size() - row;
+  struct rlimit saved {};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  const auto old_handler = std::signal(SIGXFSZ, SIG_IGN); // as nmm does (io/cli.cpp)
+  struct rlimit limit = saved;
+  limit.rlim_cur = static_cast<rlim_t>(two_rows + row / 2);
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limit), 0);
+  std::string message;
+  {
+    HistoryWriter history(file, {"m"});
+    try {
+      for (report.step = 1; report.step <= 3; ++report.step)
+        history.write_row(report, monitors);
+    } catch (const OutputWriteError& error) {
+      message = error.what();
+    }
+    EXPECT_EQ(history.bytes(), two_rows);
+  }
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &saved), 0);
+  std::signal(SIGXFSZ, old_handler);
+  EXPECT_EQ(read_text(file), expected.substr(0, two_rows)) << "the cut row is taken back";
+  EXPECT_NE(message.find("file too large: cannot write the row of step 3 (the rows before it "
+                         "stay) to '" +
+                         file.string() + "' (File too large)"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("file-size limit of " + std::to_string(two_rows + row / 2) + " bytes"),
+            std::string::npos)
+      << message;
 }
 
 TEST(History, UnwritableFileIsAnInputErrorNamingIt) {
