@@ -643,6 +643,12 @@ TEST_F(CaseRunner, TimeStepFarShorterThanAWaveCrossingATriangleIsRefusedWithTheS
 
 TEST_F(CaseRunner, ModelFarFromTheOriginIsWarnedAboutWithTheDigitsItCosts) {
   // plate.geo moved to x = 1e9 m: 5e8 times its size, 8.7 of 16 digits spent on where it is.
+#if defined(__SANITIZE_ADDRESS__)
+  // Debian's gmsh 4.8 frees, in GFace::computeMeanPlane of a surface this far out, memory
+  // that AddressSanitizer says it did not allocate (a bad-free inside libgmsh, which the
+  // release build's allocator lets pass): the reader's child process stops there.
+  GTEST_SKIP() << "gmsh's own bad-free under AddressSanitizer";
+#endif
   std::string geometry = testing::plate_geo;
   for (const auto& [from, to] : {std::pair{"Point(1) = {0,", "Point(1) = {1e9,"},
                                  std::pair{"Point(2) = {2,", "Point(2) = {1e9 + 2,"},
