@@ -101,6 +101,30 @@ struct CohesiveIncline {
   }
 };
 
+/// One geometry of the families below: slope (degrees), block length and height (m), cover
+/// size (m), order and kind of the block.
+struct Geometry {
+  double alpha = 30.0;
+  double length = 1.2;
+  double height = 0.6;
+  double size = 0.2;
+  int order = 0;
+  ElementKind kind = ElementKind::nmm;
+};
+
+/// The incline of @p g with cohesion @p ratio x c*.
+CohesiveIncline incline_of(const Geometry& g, double ratio) {
+  CohesiveIncline incline;
+  incline.alpha_degrees = g.alpha;
+  incline.length = g.length;
+  incline.height = g.height;
+  incline.cover_size = g.size;
+  incline.order = g.order;
+  incline.kind = g.kind;
+  incline.ratio = ratio;
+  return incline;
+}
+
 TEST(JointStrength, BlockOnACohesiveJointHoldsJustAboveTheLimitEquilibriumCohesion) {
   // Tolerances: at 1.05 c* the block holds, moving only by the elastic settling of the
   // block and its springs (measured at most 3.4e-6 m; 1e-5 m is a ninth to a quarter of what
@@ -112,21 +136,11 @@ TEST(JointStrength, BlockOnACohesiveJointHoldsJustAboveTheLimitEquilibriumCohesi
   // corner, all of it to 1e-6 (the detection leaves out a pair whose overlap is under 1e-6 of its
   // master edge: the sliver a settled corner moves onto the free surface, measured 4.2e-7 m of 1.2
   // m), and their summed forces are the statics of the block, W cos a and W sin a, to 0.5%.
-  for (const auto& [alpha, length, height, size, order, kind] :
-       {std::tuple{30.0, 1.2, 0.6, 0.2, 0, ElementKind::nmm},
-        std::tuple{30.0, 1.2, 0.6, 0.1, 0, ElementKind::nmm},
-        std::tuple{30.0, 3.0, 1.0, 0.3, 0, ElementKind::nmm},
-        std::tuple{30.0, 1.2, 0.6, 0.2, 1, ElementKind::nmm},
-        std::tuple{25.0, 2.0, 0.5, 0.25, 0, ElementKind::nmm},
-        std::tuple{40.0, 1.2, 0.3, 0.2, 0, ElementKind::nmm}}) {
-    CohesiveIncline incline;
-    incline.alpha_degrees = alpha;
-    incline.length = length;
-    incline.height = height;
-    incline.cover_size = size;
-    incline.order = order;
-    incline.kind = kind;
-    incline.ratio = 1.05;
+  for (const Geometry& g : {Geometry{30.0, 1.2, 0.6, 0.2, 0}, Geometry{30.0, 1.2, 0.6, 0.1, 0},
+                            Geometry{30.0, 3.0, 1.0, 0.3, 0}, Geometry{30.0, 1.2, 0.6, 0.2, 1},
+                            Geometry{25.0, 2.0, 0.5, 0.25, 0}, Geometry{40.0, 1.2, 0.3, 0.2, 0}}) {
+    const auto& [alpha, length, height, size, order, kind] = g;
+    const CohesiveIncline incline = incline_of(g, 1.05);
     const int steps = 100;
     const CohesiveIncline::Result r = incline.run(steps);
     const double a = alpha * std::numbers::pi / 180.0;
@@ -159,10 +173,8 @@ TEST(JointStrength, BlockOnACohesiveJointHoldsJustAboveTheLimitEquilibriumCohesi
 // friction alone). Run with --gtest_also_run_disabled_tests.
 TEST(JointStrength, DISABLED_DdaAndVemBlocksOnACohesiveJointHoldJustAboveTheLimitCohesion) {
   for (const ElementKind kind : {ElementKind::dda, ElementKind::vem}) {
-    CohesiveIncline incline;
-    incline.kind = kind;
-    incline.ratio = 1.05;
-    const CohesiveIncline::Result r = incline.run(100);
+    const CohesiveIncline::Result r =
+        incline_of(Geometry{30.0, 1.2, 0.6, 0.2, 0, kind}, 1.05).run(100);
     EXPECT_LT(r.moved, 1e-5) << "kind " << static_cast<int>(kind);
   }
 }
@@ -171,22 +183,13 @@ TEST(JointStrength, BlockOnACohesiveJointSlidesJustBelowTheLimitEquilibriumCohes
   // At 0.95 c* the whole joint yields, its bond breaks, and the block slides on friction
   // alone: in the second half of the steps each static step slides a dt^2 / 2, to 1% (the
   // block's elastic settling is over by then; measured equal to 6 digits).
-  for (const auto& [alpha, length, height, size, order, kind] :
-       {std::tuple{30.0, 1.2, 0.6, 0.2, 0, ElementKind::nmm},
-        std::tuple{30.0, 3.0, 1.0, 0.3, 0, ElementKind::nmm},
-        std::tuple{30.0, 1.2, 0.6, 0.2, 1, ElementKind::nmm},
-        std::tuple{25.0, 2.0, 0.5, 0.25, 0, ElementKind::nmm},
-        std::tuple{40.0, 1.2, 0.3, 0.2, 0, ElementKind::nmm},
-        std::tuple{30.0, 1.2, 0.6, 0.2, 0, ElementKind::dda},
-        std::tuple{30.0, 1.2, 0.6, 0.2, 0, ElementKind::vem}}) {
-    CohesiveIncline incline;
-    incline.alpha_degrees = alpha;
-    incline.length = length;
-    incline.height = height;
-    incline.cover_size = size;
-    incline.order = order;
-    incline.kind = kind;
-    incline.ratio = 0.95;
+  for (const Geometry& g :
+       {Geometry{30.0, 1.2, 0.6, 0.2, 0}, Geometry{30.0, 3.0, 1.0, 0.3, 0},
+        Geometry{30.0, 1.2, 0.6, 0.2, 1}, Geometry{25.0, 2.0, 0.5, 0.25, 0},
+        Geometry{40.0, 1.2, 0.3, 0.2, 0}, Geometry{30.0, 1.2, 0.6, 0.2, 0, ElementKind::dda},
+        Geometry{30.0, 1.2, 0.6, 0.2, 0, ElementKind::vem}}) {
+    const auto& [alpha, length, height, size, order, kind] = g;
+    const CohesiveIncline incline = incline_of(g, 0.95);
     const int steps = 60;
     const CohesiveIncline::Result r = incline.run(steps);
     const double expected = (steps - steps / 2) * r.friction_slide;
