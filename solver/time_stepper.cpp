@@ -8,6 +8,8 @@
 #include "solver/cholmod_solver.hpp"
 #include "solver/low_rank_solve.hpp"
 #include "solver/sparsity.hpp"
+#include "solver/step_context.hpp"
+#include "solver/step_system.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -25,60 +27,6 @@ namespace nmm {
 namespace {
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
-
-using Clock = std::chrono::steady_clock;
-
-/// Adds the time since @p start to @p total and restarts @p start.
-void lap(Clock::time_point& start, double& total) {
-  const Clock::time_point now = Clock::now();
-  total += std::chrono::duration<double>(now - start).count();
-  start = now;
-}
-
-/// The reduction of a coupling whose unknowns are not all free: d_local = T z + t0.
-struct Reduction {
-  std::vector<int> reduced;  ///< reduced unknowns z, sorted
-  Eigen::MatrixXd transform; ///< local x reduced.size()
-  Eigen::VectorXd constant;  ///< t0
-};
-
-/// Appends the reduced unknowns of the raw unknowns @p raw to @p flat. Returns true when
-/// every one is free (the common case: then they are appended in local order and the local
-/// matrix scatters as it is); otherwise fills @p r and appends its sorted unknowns.
-bool reduce(const DofMap& map, std::span<const int> raw, std::vector<int>& flat, Reduction& r) {
-  bool identity = true;
-  for (std::size_t i = 0; i < raw.size() && identity; ++i)
-    identity = !map.is_slave(raw[i]);
-  if (identity) {
-    for (const int d : raw)
-      flat.push_back(map.reduced(d));
-    return true;
-  }
-  std::vector<DofExpansion> expansions;
-  expansions.reserve(raw.size());
-  r.reduced.clear();
-  for (std::size_t i = 0; i < raw.size(); ++i) {
-    expansions.push_back(map.expansion(raw[i]));
-    for (const auto& [j, c] : expansions.back().terms)
-      r.reduced.push_back(j);
-  }
-  std::sort(r.reduced.begin(), r.reduced.end());
-  r.reduced.erase(std::unique(r.reduced.begin(), r.reduced.end()), r.reduced.end());
-  const auto n = static_cast<Eigen::Index>(raw.size());
-  r.transform = Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(r.reduced.size()));
-  r.constant = Eigen::VectorXd::Zero(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const DofExpansion& e = expansions[static_cast<std::size_t>(i)];
-    r.constant(i) = e.constant;
-    for (const auto& [j, c] : e.terms) {
-      const auto column =
-          std::lower_bound(r.reduced.begin(), r.reduced.end(), j) - r.reduced.begin();
-      r.transform(i, column) += c;
-    }
-  }
-  flat.insert(flat.end(), r.reduced.begin(), r.reduced.end());
-  return false;
-}
 
 /// The coupled friction of the contacts (ContactSystem::FrictionCoupling) in the reduced
 /// unknowns: for contact j, column j of U is -coef w and of V is a (an unsymmetric term
@@ -181,32 +129,16 @@ std::string energy_message(
 } // namespace
 
 struct TimeStepper::Impl {
-  std::unique_ptr<ContactSystem> contact;     // null when nothing can touch
-  std::vector<LinearConstraint> dependencies; // order-1 fixes, chosen once
+  std::unique_ptr<ContactSystem> contact; // null when nothing can touch
   std::unique_ptr<LinearSolver> solver;
   Eigen::VectorXd acceleration; ///< (v1 - v0) / dt of the last step; zero after a static one
-  SparsityPattern pattern;
-  std::unique_ptr<Assembler> stiffness;
-  /// Consistent mass of every element (times density and thickness), kept from the assembly
-  /// for the kinetic energy of the new velocities.
-  std::vector<ElementMass> element_mass;
+  StepSystemState system;       ///< what the step systems keep from step to step
   /// Kinetic energy at the first dynamic step plus the work of the loads in the initial
   /// equilibrium (stored in the springs, released later), J: with load_work, the most
   /// kinetic energy the run can have (the energy check).
   double start_energy = 0.0;
   bool energy_started = false;
-  double load_work = 0.0;            ///< StepReport::load_work
-  std::shared_ptr<const DofMap> map; // of the last step (or try)
-  /// Reduced unknowns of every coupling (elements, penalty springs, contacts), flat, with
-  /// their starts: what the current plans were made for, compared to the next step's.
-  std::vector<int> coupling_start;
-  std::vector<int> coupling_dofs;
-  /// The couplings the sparsity pattern was built from (the plans may have changed since
-  /// within it), for a restart checkpoint: the restored run rebuilds the same pattern, so
-  /// the same ordering and factor.
-  std::vector<int> pattern_start;
-  std::vector<int> pattern_dofs;
-  bool analysed = false;
+  double load_work = 0.0; ///< StepReport::load_work
   /// Solver counters of the run before a restart.
   SolverCounters restored_counters;
 };
@@ -265,7 +197,7 @@ TimeStepper::TimeStepper(Model& model,
       }
     }
   }
-  impl_->dependencies = model_.dependency_relations();
+  impl_->system.dependencies = model_.dependency_relations();
 }
 
 TimeStepper::~TimeStepper() = default;
@@ -280,9 +212,9 @@ SolverCounters TimeStepper::solver_counters() const {
   return counters;
 }
 
-int TimeStepper::n_unknowns() const { return impl_->pattern.n_dofs(); }
+int TimeStepper::n_unknowns() const { return impl_->system.pattern.n_dofs(); }
 
-const SparseMatrix& TimeStepper::last_matrix() const { return impl_->stiffness->matrix(); }
+const SparseMatrix& TimeStepper::last_matrix() const { return impl_->system.stiffness->matrix(); }
 
 double TimeStepper::contact_penetration() const {
   return impl_->contact ? impl_->contact->max_penetration() : 0.0;
@@ -333,22 +265,19 @@ StepReport TimeStepper::equilibrate() {
 }
 
 double TimeStepper::kinetic_energy(const Eigen::VectorXd& velocity) const {
-  if (impl_->element_mass.empty())
+  if (impl_->system.element_mass.empty())
     return 0.0;
   double kinetic = 0.0;
   Eigen::VectorXd values;
   for (int e = 0; e < model_.n_elements(); ++e) {
     model_.element_values(e, velocity, values);
-    kinetic += impl_->element_mass[at(e)].energy(values);
+    kinetic += impl_->system.element_mass[at(e)].energy(values);
   }
   return kinetic;
 }
 
 StepReport TimeStepper::advance(double until, bool equilibrium) {
-  // One clock laps through the step: every part's time is the time since the last lap, so
-  // the parts add up to the whole (StepperCounters).
-  const Clock::time_point step_start = Clock::now();
-  Clock::time_point clock = step_start;
+  StepClock clock;
   impl_->solver->start_step();
   const bool dynamic = options_.integration == TimeIntegration::dynamic && !equilibrium;
   // Static analysis without contact: one solve with the stiffness alone per step; with
@@ -400,221 +329,52 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   // longer step reached; with edge-to-edge springs that go where the edges press, those
   // include a pressed part and anchors fitted to a motion the shorter step does not have:
   // examples/10 lost its pivot that way). Rules tried: docs/formulation.md, "Friction".
-  lap(clock, counters_.seconds_step_control);
+  clock.lap(counters_.seconds_step_control);
   if (impl_->contact) {
     impl_->contact->begin_step(model_, limit);
     impl_->contact->set_hold_shear(equilibrium);
     impl_->contact->set_dynamic(dynamic);
     ++counters_.contact_searches;
   }
-  lap(clock, counters_.seconds_detection);
+  clock.lap(counters_.seconds_detection);
   double work = 0.0; // of the loads in the step (its last try)
   // Whether this try couples friction to the normal force in the solve (docs/formulation.md,
   // "Coupled friction"): a step whose open-close iteration does not converge with friction as
   // loads from the last iteration is tried again that way before it is cut.
   bool coupled = false;
+  const StepContext context{.model = model_,
+                            .scene = scene_,
+                            .options = options_,
+                            .kind = {equilibrium, dynamic, with_mass, inertial, limit},
+                            .contact = impl_->contact.get(),
+                            .solver = *impl_->solver,
+                            .counters = counters_,
+                            .warnings = warnings_,
+                            .step = step_ + 1,
+                            .time = time_,
+                            .model_size = model_size_,
+                            .velocity = velocity_,
+                            .acceleration = impl_->acceleration};
   for (int attempt = 0;; ++attempt) {
     const int cut = report.step_cuts;
-    lap(clock, counters_.seconds_step_control); // the checks of a try that was cut
+    clock.lap(counters_.seconds_step_control); // the checks of a try that was cut
     if (attempt > 0 && impl_->contact)
       impl_->contact->restart_step();
     if (impl_->contact)
       impl_->contact->set_coupled_friction(coupled);
-    lap(clock, counters_.seconds_detection); // (the contact states back to the step's start)
-    const double t1 = time_ + dt;
-    // Constraints and the reduction of every element.
-    std::vector<LinearConstraint> constraints = model_.extension_relations();
-    constraints.insert(constraints.end(), impl_->dependencies.begin(), impl_->dependencies.end());
-    const std::vector<LinearConstraint> supports = support_constraints(model_, scene_.supports, t1);
-    constraints.insert(constraints.end(), supports.begin(), supports.end());
-    // The last step's slaves are kept where they still may be: the same pattern, no new
-    // symbolic analysis.
-    impl_->map = std::make_shared<const DofMap>(model_.n_dofs(), constraints, 1e-12, model_size_,
-                                                impl_->map.get());
-    const DofMap& map = *impl_->map;
-
-    // Reduced unknowns of every coupling: elements, then penalty supports (same unknowns as
-    // their element). Only couplings with slaves get a transform.
-    std::vector<int> starts{0};
-    std::vector<int> flat;
-    starts.reserve(model_.elements.size() + scene_.supports.size() + 1);
-    flat.reserve(impl_->coupling_dofs.size());
-    std::vector<int> transform_of(model_.elements.size(), -1);
-    std::vector<Reduction> transforms;
-    for (int e = 0; e < model_.n_elements(); ++e) {
-      Reduction r;
-      if (!reduce(map, model_.element_dofs(e), flat, r)) {
-        transform_of[at(e)] = static_cast<int>(transforms.size());
-        transforms.push_back(std::move(r));
-      }
-      starts.push_back(static_cast<int>(flat.size()));
-    }
-    std::vector<int> spring_of; // support index of each extra coupling
-    for (std::size_t s = 0; s < scene_.supports.size(); ++s) {
-      const SupportPoint& support = scene_.supports[s];
-      if (support.method == SupportMethod::penalty && support.point.element >= 0) {
-        const int e = support.point.element;
-        flat.insert(flat.end(), flat.begin() + starts[at(e)], flat.begin() + starts[at(e + 1)]);
-        starts.push_back(static_cast<int>(flat.size()));
-        spring_of.push_back(static_cast<int>(s));
-      }
-    }
-    // Every contact found at the start of the step is in the pattern (DESIGN.md): the
-    // symbolic analysis runs once per step, open-close iterations only refactorise.
-    // The raw unknowns of contact point i: contact_dofs[contact_start[i]...contact_start[i + 1]).
-    std::vector<int> contact_dofs;
-    std::vector<int> contact_start{0};
-    std::vector<int> contact_transform;
-    auto contact_point_dofs = [&](int i) {
-      return std::span<const int>(contact_dofs.data() + contact_start[at(i)],
-                                  at(contact_start[at(i + 1)] - contact_start[at(i)]));
-    };
-    if (impl_->contact) {
-      impl_->contact->prepare_kinematics(model_);
-      for (int i = 0; i < impl_->contact->n_points(); ++i) {
-        impl_->contact->append_point_dofs(model_, i, contact_dofs);
-        contact_start.push_back(static_cast<int>(contact_dofs.size()));
-        Reduction r;
-        contact_transform.push_back(-1);
-        if (!reduce(map, contact_point_dofs(i), flat, r)) {
-          contact_transform.back() = static_cast<int>(transforms.size());
-          transforms.push_back(std::move(r));
-        }
-        starts.push_back(static_cast<int>(flat.size()));
-      }
-    }
-    const int first_contact_plan = static_cast<int>(model_.elements.size() + spring_of.size());
-    auto coupling = [&](std::size_t k) {
-      return std::span<const int>(flat.data() + starts[k], at(starts[k + 1] - starts[k]));
-    };
-    // Plan k of couplings first, first + 1, ... (in order), or -1 when it is not in the
-    // pattern. The points of an edge-to-edge pair couple the same unknowns: one plan for them
-    // (looking further back, for all the contacts of two elements, costs as much as it saves
-    // at 10,004 DDA blocks).
-    auto plan_coupling = [&](std::size_t k, std::size_t first) {
-      if (k > first && std::ranges::equal(coupling(k), coupling(k - 1)))
-        return impl_->stiffness->plan_as(static_cast<int>(k) - 1);
-      return impl_->stiffness->plan_if_in_pattern(coupling(k));
-    };
-    lap(clock, counters_.seconds_constraints);
-    // The sparsity pattern: rebuilt only when a coupling needs an entry it does not have.
-    // Couplings that changed within it (the expansion of a slave gaining or losing a term
-    // whose coefficient cancels to rounding as supports move) only get new plans: no new
-    // symbolic analysis.
-    bool rebuilt = false;
-    const bool same_size = impl_->stiffness && impl_->pattern.n_dofs() == map.n_reduced();
-    const bool same = same_size && impl_->coupling_start == starts && impl_->coupling_dofs == flat;
-    // The elements and supports come first and rarely change: when only the contacts did,
-    // their plans stay and only the contacts' are made again.
-    const auto fixed = static_cast<std::size_t>(first_contact_plan);
-    const bool fixed_same =
-        !same && same_size && impl_->coupling_start.size() > fixed &&
-        std::equal(starts.begin(), starts.begin() + static_cast<std::ptrdiff_t>(fixed) + 1,
-                   impl_->coupling_start.begin()) &&
-        std::equal(flat.begin(), flat.begin() + starts[fixed], impl_->coupling_dofs.begin());
-    const std::size_t first_new = fixed_same ? fixed : 0;
-    bool planned = false; // new plans in the last pattern
-    if (!same && same_size) {
-      impl_->stiffness->truncate_plans(static_cast<int>(first_new));
-      planned = true;
-      for (std::size_t k = first_new; k + 1 < starts.size() && planned; ++k)
-        planned = plan_coupling(k, first_new) >= 0;
-    }
-    if (planned) {
-      impl_->coupling_start = starts;
-      impl_->coupling_dofs = flat;
-      ++counters_.plan_rebuilds;
-    } else if (!same) {
-      SparsityBuilder builder(map.n_reduced());
-      builder.reserve(starts.size() - 1, flat.size());
-      for (std::size_t k = 0; k + 1 < starts.size(); ++k)
-        builder.add(coupling(k));
-      impl_->pattern = builder.build();
-      impl_->stiffness = std::make_unique<Assembler>(impl_->pattern);
-      for (std::size_t k = 0; k + 1 < starts.size(); ++k) {
-        const int id = plan_coupling(k, 0);
-        NMM_ASSERT(id >= 0, "every coupling is in the pattern built from them");
-      }
-      impl_->coupling_start = starts;
-      impl_->coupling_dofs = flat;
-      impl_->pattern_start = starts;
-      impl_->pattern_dofs = flat;
-      ++counters_.pattern_builds;
-      rebuilt = true;
-    }
-    lap(clock, counters_.seconds_pattern);
-    Assembler& a = *impl_->stiffness;
-    a.zero();
-
-    // Loads of the end of the step (point and curve loads here, body forces and initial
-    // stresses per element below).
-    Eigen::VectorXd f = Eigen::VectorXd::Zero(model_.n_dofs());
-    for (const PointLoad& load : scene_.point_loads)
-      add_point_load(model_, load, t1, f);
-    for (const CurveLoad& load : scene_.curve_loads)
-      add_curve_load(model_, load, t1, f);
-
-    // The loads alone (point and curve loads, body forces, initial stresses; not the inertia
-    // load) do the work of the energy check.
-    Eigen::VectorXd loads = f;
-    // One pass over the elements: one set of moments gives stiffness, mass, inertia load,
-    // body forces and the initial-stress load.
-    Eigen::VectorXd rhs_correction = Eigen::VectorXd::Zero(map.n_reduced());
-    const double inertia = with_mass ? 2.0 / (dt * dt) : 0.0;
-    if (with_mass)
-      impl_->element_mass.resize(model_.elements.size());
-    auto scatter = [&](int plan, const auto& local, int transform) {
-      if (transform < 0) {
-        a.add(plan, local);
-        return;
-      }
-      const Reduction& r = transforms[at(transform)];
-      a.add(plan, r.transform.transpose() * local * r.transform);
-      if (!r.constant.isZero()) {
-        const Eigen::VectorXd correction = r.transform.transpose() * (local * r.constant);
-        for (std::size_t j = 0; j < r.reduced.size(); ++j)
-          rhs_correction(r.reduced[j]) -= correction(static_cast<Eigen::Index>(j));
-      }
-    };
-    // Workspaces: the same size element after element, so no allocation in the loop.
-    Eigen::MatrixXd local;
-    Eigen::VectorXd element_loads;
-    Eigen::VectorXd element_velocity;
-    Eigen::VectorXd inertia_load;
-    for (int e = 0; e < model_.n_elements(); ++e) {
-      const ModelElement& element = model_.elements[at(e)];
-      const ElasticMaterial& material = model_.material_of(e);
-      const ElementShape shape = model_.shape(e);
-      const ElementIntegrals integrals(shape, element.polygons);
-      const std::span<const int> dofs = model_.element_dofs(e);
-      integrals.stiffness(elasticity_matrix(material), material.thickness_factor(), local);
-      element_load(model_, e, integrals, scene_.body_loads, t1, element_loads);
-      for (std::size_t i = 0; i < dofs.size(); ++i) {
-        f(dofs[i]) += element_loads(static_cast<Eigen::Index>(i));
-        loads(dofs[i]) += element_loads(static_cast<Eigen::Index>(i));
-      }
-      if (with_mass) {
-        // Inertia 2 M / dt² and its load 2 M v0 / dt (Shi eq. 2.22-2.23).
-        ElementMass& mass = impl_->element_mass[at(e)];
-        integrals.mass(material.density * material.thickness_factor(), mass);
-        mass.add_to(local, inertia);
-        model_.element_values(e, velocity_, element_velocity);
-        mass.times(element_velocity, inertia_load);
-        for (std::size_t i = 0; i < dofs.size(); ++i)
-          f(dofs[i]) += (2.0 / dt) * inertia_load(static_cast<Eigen::Index>(i));
-      }
-      scatter(e, local, transform_of[at(e)]);
-    }
-    for (std::size_t s = 0; s < spring_of.size(); ++s) {
-      const SupportPoint& support = scene_.supports[at(spring_of[s])];
-      const SupportSpring spring = support_spring(model_, support, options_.spring_stiffness, t1);
-      const std::span<const int> dofs = model_.element_dofs(support.point.element);
-      for (std::size_t i = 0; i < dofs.size(); ++i)
-        f(dofs[i]) += spring.load(static_cast<Eigen::Index>(i));
-      scatter(static_cast<int>(model_.elements.size() + s), spring.stiffness,
-              transform_of[at(support.point.element)]);
-    }
-    lap(clock, counters_.seconds_assembly);
+    clock.lap(counters_.seconds_detection); // (the contact states back to the step's start)
+    StepSystem system = build_step_system(context, impl_->system, dt, clock);
+    const DofMap& map = *system.map;
+    const StepCouplings& couplings = system.couplings;
+    Assembler& a = *impl_->system.stiffness;
+    Eigen::VectorXd& f = system.f;
+    const Eigen::VectorXd& loads = system.loads;
+    Eigen::VectorXd& rhs_correction = system.rhs_correction;
+    bool& rebuilt = system.rebuilt;
+    const int first_contact_plan = couplings.first_contact_plan;
+    const std::vector<int>& contact_transform = couplings.contact_transform;
+    const std::vector<Reduction>& transforms = couplings.transforms;
+    auto contact_point_dofs = [&](int i) { return couplings.contact_point_dofs(i); };
 
     // Open-close iterations (Shi 8.2): the elements and supports stay, the contact springs
     // and friction loads follow the modes until no contact changes its mode and friction
@@ -703,19 +463,19 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
           for (std::size_t j = 0; j < dofs.size(); ++j)
             f_iteration(dofs[j]) += load(static_cast<Eigen::Index>(j));
           if (assemble)
-            scatter(first_contact_plan + i, spring, contact_transform[at(i)]);
+            system.scatter(a, first_contact_plan + i, spring, contact_transform[at(i)]);
         }
       }
-      lap(clock, counters_.seconds_contact_springs);
+      clock.lap(counters_.seconds_contact_springs);
       const Eigen::VectorXd rhs = map.restrict(f_iteration) + rhs_correction;
-      lap(clock, counters_.seconds_assembly);
-      if (rebuilt || !impl_->analysed) {
+      clock.lap(counters_.seconds_assembly);
+      if (rebuilt || !impl_->system.analysed) {
         if (impl_->solver->analyze(a.matrix()) != SolveStatus::ok)
           throw NumericalError("the symbolic analysis of the step matrix failed");
-        impl_->analysed = true;
+        impl_->system.analysed = true;
         rebuilt = false;
       }
-      lap(clock, counters_.seconds_analysis);
+      clock.lap(counters_.seconds_analysis);
       if (assemble) {
         const SolveStatus factor = impl_->solver->factorize(a.matrix());
         if (factor != SolveStatus::ok)
@@ -723,7 +483,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
               singular_message(model_, map, impl_->solver->failed_column(), factor));
         ++factorisations;
       }
-      lap(clock, counters_.seconds_factorization);
+      clock.lap(counters_.seconds_factorization);
       SolveStatus solved = SolveStatus::ok;
       if (coupled) {
         const LowRankSolveReport gmres = solve_coupled(rhs, reduced);
@@ -740,11 +500,11 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       raw = map.expand(reduced);
       if (!raw.allFinite())
         throw NumericalError("the step displacement is not finite");
-      lap(clock, counters_.seconds_solve);
+      clock.lap(counters_.seconds_solve);
       if (!impl_->contact)
         break;
       const ModeUpdate update = impl_->contact->update_modes(model_, raw);
-      lap(clock, counters_.seconds_contact_modes);
+      clock.lap(counters_.seconds_contact_modes);
       if (impl_->contact->converged(update)) {
         // Augmented Lagrange: contacts still penetrating by more than the tolerance move
         // their springs' zeros by it and the step is solved again with the same factor.
@@ -878,7 +638,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   if (!equilibrium)
     impl_->load_work += work;
   report.load_work = impl_->load_work;
-  lap(clock, counters_.seconds_step_control);
+  clock.lap(counters_.seconds_step_control);
 
   // Commit: velocities (computed and checked above), stresses, geometry.
   if (dynamic) {
@@ -934,8 +694,8 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   report.time = time_;
   report.dt = dt;
 
-  lap(clock, counters_.seconds_update);
-  counters_.seconds_steps += std::chrono::duration<double>(clock - step_start).count();
+  clock.lap(counters_.seconds_update);
+  counters_.seconds_steps += clock.elapsed();
   return report;
 }
 
@@ -1050,21 +810,21 @@ void TimeStepper::save_state(StateWriter& out) const {
   out.put(impl_->acceleration);
   // The last step's slaves: the next step's elimination prefers them (DofMap's previous).
   std::vector<int> slaves;
-  if (impl_->map) {
-    for (int raw = 0; raw < impl_->map->n_raw(); ++raw) {
-      if (impl_->map->is_slave(raw))
+  if (impl_->system.map) {
+    for (int raw = 0; raw < impl_->system.map->n_raw(); ++raw) {
+      if (impl_->system.map->is_slave(raw))
         slaves.push_back(raw);
     }
   }
-  out.put(impl_->map != nullptr);
+  out.put(impl_->system.map != nullptr);
   out.put(slaves);
-  out.put(impl_->stiffness != nullptr);
-  if (impl_->stiffness) {
-    out.put(static_cast<std::int64_t>(impl_->pattern.n_dofs()));
-    out.put(impl_->pattern_start);
-    out.put(impl_->pattern_dofs);
-    out.put(impl_->coupling_start);
-    out.put(impl_->coupling_dofs);
+  out.put(impl_->system.stiffness != nullptr);
+  if (impl_->system.stiffness) {
+    out.put(static_cast<std::int64_t>(impl_->system.pattern.n_dofs()));
+    out.put(impl_->system.pattern_start);
+    out.put(impl_->system.pattern_dofs);
+    out.put(impl_->system.coupling_start);
+    out.put(impl_->system.coupling_dofs);
   }
   out.put(impl_->contact != nullptr);
   if (impl_->contact)
@@ -1117,7 +877,7 @@ void TimeStepper::load_state(StateReader& in) {
             " unknowns, the case has " + std::to_string(model_.n_dofs()));
   const bool had_map = in.boolean();
   const std::vector<int> slaves = in.integers();
-  impl_->map.reset();
+  impl_->system.map.reset();
   if (had_map) {
     // A map whose only use is to be the next step's "previous": each saved slave is the
     // preferred pivot of a row of its own, so exactly those are slaves.
@@ -1129,16 +889,16 @@ void TimeStepper::load_state(StateReader& in) {
                 std::to_string(model_.n_dofs()));
       rows.push_back(LinearConstraint{{{raw, 1.0}}, 0.0, raw, "restart"});
     }
-    impl_->map = std::make_shared<const DofMap>(model_.n_dofs(), rows);
+    impl_->system.map = std::make_shared<const DofMap>(model_.n_dofs(), rows);
   }
-  impl_->stiffness.reset();
-  impl_->analysed = false;
+  impl_->system.stiffness.reset();
+  impl_->system.analysed = false;
   if (in.boolean()) {
     const std::int64_t n = in.integer();
-    impl_->pattern_start = in.integers();
-    impl_->pattern_dofs = in.integers();
-    impl_->coupling_start = in.integers();
-    impl_->coupling_dofs = in.integers();
+    impl_->system.pattern_start = in.integers();
+    impl_->system.pattern_dofs = in.integers();
+    impl_->system.coupling_start = in.integers();
+    impl_->system.coupling_dofs = in.integers();
     auto check = [&](const std::vector<int>& starts, const std::vector<int>& dofs) {
       if (starts.empty() || starts.front() != 0 || !std::is_sorted(starts.begin(), starts.end()) ||
           starts.back() != static_cast<int>(dofs.size()))
@@ -1148,24 +908,26 @@ void TimeStepper::load_state(StateReader& in) {
           in.fail("the couplings of the sparsity pattern are inconsistent");
       }
     };
-    check(impl_->pattern_start, impl_->pattern_dofs);
-    check(impl_->coupling_start, impl_->coupling_dofs);
+    check(impl_->system.pattern_start, impl_->system.pattern_dofs);
+    check(impl_->system.coupling_start, impl_->system.coupling_dofs);
     SparsityBuilder builder(static_cast<int>(n));
-    for (std::size_t k = 0; k + 1 < impl_->pattern_start.size(); ++k)
-      builder.add(std::span<const int>(impl_->pattern_dofs.data() + impl_->pattern_start[k],
-                                       at(impl_->pattern_start[k + 1] - impl_->pattern_start[k])));
-    impl_->pattern = builder.build();
-    impl_->stiffness = std::make_unique<Assembler>(impl_->pattern);
-    for (std::size_t k = 0; k + 1 < impl_->coupling_start.size(); ++k) {
-      const std::span<const int> dofs(impl_->coupling_dofs.data() + impl_->coupling_start[k],
-                                      at(impl_->coupling_start[k + 1] - impl_->coupling_start[k]));
+    for (std::size_t k = 0; k + 1 < impl_->system.pattern_start.size(); ++k)
+      builder.add(std::span<const int>(
+          impl_->system.pattern_dofs.data() + impl_->system.pattern_start[k],
+          at(impl_->system.pattern_start[k + 1] - impl_->system.pattern_start[k])));
+    impl_->system.pattern = builder.build();
+    impl_->system.stiffness = std::make_unique<Assembler>(impl_->system.pattern);
+    for (std::size_t k = 0; k + 1 < impl_->system.coupling_start.size(); ++k) {
+      const std::span<const int> dofs(
+          impl_->system.coupling_dofs.data() + impl_->system.coupling_start[k],
+          at(impl_->system.coupling_start[k + 1] - impl_->system.coupling_start[k]));
       for (const int i : dofs) {
         for (const int j : dofs) {
-          if (i >= 0 && j >= i && !impl_->pattern.contains(i, j))
+          if (i >= 0 && j >= i && !impl_->system.pattern.contains(i, j))
             in.fail("a coupling lies outside the sparsity pattern");
         }
       }
-      (void)impl_->stiffness->plan(dofs);
+      (void)impl_->system.stiffness->plan(dofs);
     }
   }
   const bool had_contact = in.boolean();
