@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
-// solver/step_context.hpp — what the parts of one time step share (time_stepper.cpp and
-// step_system so far): the kind of step, the stepper's inputs for it, and the clock whose
-// laps are StepperCounters' seconds_*.
+// solver/step_context.hpp — what the parts of one time step share (time_stepper.cpp,
+// step_system and open_close so far): the kind of step, the stepper's inputs for it, the
+// state of its tries, and the clock whose laps are StepperCounters' seconds_*.
 #pragma once
 
 #include "contact/contact_system.hpp"
@@ -28,6 +28,17 @@ struct StepKind {
   /// displacement limit (Shi 8.5); false for a static load step.
   bool inertial = false;
   double limit = 0.0; ///< largest allowed step displacement, m (Shi's g2 times the size)
+};
+
+/// The tries of one step: the time step, cut on every failed try (step control), and how
+/// friction is solved.
+struct StepTries {
+  double dt = 0.0; ///< of the current try, s
+  /// This try couples friction to the normal force in the solve (docs/formulation.md,
+  /// "Coupled friction"): a step whose open-close iteration does not converge with friction
+  /// as loads from the last iteration is tried again that way before it is cut.
+  bool coupled = false;
+  int cuts = 0; ///< times the step was cut (StepReport::step_cuts)
 };
 
 /// The stepper's inputs and outputs for one step, shared by its parts. The references are

@@ -7,6 +7,7 @@
 #include "solver/assembler.hpp"
 #include "solver/cholmod_solver.hpp"
 #include "solver/low_rank_solve.hpp"
+#include "solver/open_close.hpp"
 #include "solver/sparsity.hpp"
 #include "solver/step_context.hpp"
 #include "solver/step_system.hpp"
@@ -27,82 +28,6 @@ namespace nmm {
 namespace {
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
-
-/// The coupled friction of the contacts (ContactSystem::FrictionCoupling) in the reduced
-/// unknowns: for contact j, column j of U is -coef w and of V is a (an unsymmetric term
-/// U V^T of the step matrix), and the load coef (c0 + a . t0) w is added to @p rhs.
-/// @p point_dofs(i) gives contact point i's raw unknowns, @p transform_of[i] its reduction
-/// in @p transforms (-1: its unknowns are all free).
-template <class PointDofs>
-std::pair<SparseMatrix, SparseMatrix>
-reduce_coupling(const std::vector<ContactSystem::FrictionCoupling>& terms,
-                const DofMap& map,
-                const PointDofs& point_dofs,
-                const std::vector<int>& transform_of,
-                const std::vector<Reduction>& transforms,
-                Eigen::VectorXd& rhs) {
-  std::vector<Eigen::Triplet<double>> u_entries;
-  std::vector<Eigen::Triplet<double>> v_entries;
-  auto add = [&](int column, int unknown, double along, double normal, double load) {
-    u_entries.emplace_back(unknown, column, along);
-    v_entries.emplace_back(unknown, column, normal);
-    rhs(unknown) += load * along;
-  };
-  for (std::size_t j = 0; j < terms.size(); ++j) {
-    const ContactSystem::FrictionCoupling& term = terms[j];
-    const auto column = static_cast<int>(j);
-    const int transform = transform_of[at(term.point)];
-    if (transform < 0) {
-      const std::span<const int> dofs = point_dofs(term.point);
-      for (std::size_t l = 0; l < dofs.size(); ++l) {
-        const auto i = static_cast<Eigen::Index>(l);
-        add(column, map.reduced(dofs[l]), -term.coef * term.w(i), term.a(i), -term.c0);
-      }
-      continue;
-    }
-    const Reduction& r = transforms[at(transform)];
-    const Eigen::VectorXd w = r.transform.transpose() * term.w;
-    const Eigen::VectorXd gradient = r.transform.transpose() * term.a;
-    const double c0 = term.c0 + term.a.dot(r.constant);
-    for (std::size_t l = 0; l < r.reduced.size(); ++l) {
-      const auto i = static_cast<Eigen::Index>(l);
-      add(column, r.reduced[l], -term.coef * w(i), gradient(i), -c0);
-    }
-  }
-  const auto n = static_cast<Eigen::Index>(map.n_reduced());
-  const auto m = static_cast<Eigen::Index>(terms.size());
-  std::pair<SparseMatrix, SparseMatrix> uv{SparseMatrix(n, m), SparseMatrix(n, m)};
-  uv.first.setFromTriplets(u_entries.begin(), u_entries.end());
-  uv.second.setFromTriplets(v_entries.begin(), v_entries.end());
-  return uv;
-}
-
-/// Why the step matrix cannot be factorised, naming the body whose unknowns are free.
-std::string
-singular_message(const Model& model, const DofMap& map, long column, SolveStatus status) {
-  std::ostringstream message;
-  message << "the step matrix is singular (" << to_string(status) << ")";
-  if (column < 0)
-    return message.str();
-  for (int d = 0; d < model.n_dofs(); ++d) {
-    if (map.reduced(d) != column)
-      continue;
-    const ModelCover& cover = model.covers[at(model.cover_of_dof(d))];
-    int material = -1;
-    for (const ModelElement& e : model.elements) {
-      if (e.block == cover.block)
-        material = e.material;
-    }
-    message << " at the unknowns of the cover near " << point_text(cover.position, 6)
-            << (material >= 0 ? " (material \"" + model.materials[at(material)].name + "\")"
-                              : std::string())
-            << ": this body can move freely in " << ((d % 2) == 0 ? "x" : "y")
-            << "; hold it with a [[boundary]] support (static analysis) or give it mass "
-               "(dynamic analysis)";
-    break;
-  }
-  return message.str();
-}
 
 /// Why a dynamic step is refused by the energy check, naming the fastest cover.
 std::string energy_message(
@@ -364,198 +289,14 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
       impl_->contact->set_coupled_friction(coupled);
     clock.lap(counters_.seconds_detection); // (the contact states back to the step's start)
     StepSystem system = build_step_system(context, impl_->system, dt, clock);
-    const DofMap& map = *system.map;
-    const StepCouplings& couplings = system.couplings;
-    Assembler& a = *impl_->system.stiffness;
-    Eigen::VectorXd& f = system.f;
     const Eigen::VectorXd& loads = system.loads;
-    Eigen::VectorXd& rhs_correction = system.rhs_correction;
-    bool& rebuilt = system.rebuilt;
-    const int first_contact_plan = couplings.first_contact_plan;
-    const std::vector<int>& contact_transform = couplings.contact_transform;
-    const std::vector<Reduction>& transforms = couplings.transforms;
-    auto contact_point_dofs = [&](int i) { return couplings.contact_point_dofs(i); };
-
-    // Open-close iterations (Shi 8.2): the elements and supports stay, the contact springs
-    // and friction loads follow the modes until no contact changes its mode and friction
-    // agrees with the normal forces. An iteration in which only the friction loads changed
-    // has the same matrix: it reuses the factor (one more solve, no refactorisation).
-    std::vector<double> base_values;
-    const Eigen::VectorXd base_correction = rhs_correction;
-    if (impl_->contact)
-      base_values.assign(a.values().begin(), a.values().end());
-    bool converged = !impl_->contact;
-    bool assemble = true;
-    int iteration = 0;
-    int factorisations = 0;
-    int friction_solves = 0;
-    int open_close = 0; // iterations that changed a contact's mode
-    int augmentations = 0;
-    bool had_friction = false; // a sliding contact with friction in some iteration of the try
-    // An iterative solver's first guess: Shi's step displacement d = v dt + a dt^2 / 2 with
-    // the last step's acceleration (zero in static steps); then each open-close iteration
-    // starts from the last one's solution. At 10,004 DDA blocks falling from rest the guess
-    // with the acceleration takes 17.5 iterations a solve, without it (d = v dt) 41.
-    Eigen::VectorXd reduced;
-    if (options_.conjugate_gradients) {
-      reduced.setZero(map.n_reduced());
-      if (dynamic) {
-        for (int r = 0; r < map.n_raw(); ++r) {
-          if (!map.is_slave(r))
-            reduced(map.reduced(r)) = (velocity_(r) + 0.5 * dt * impl_->acceleration(r)) * dt;
-        }
-      }
-    }
-    // A solve with coupled friction: the sliding contacts' terms of rank one and loads in the
-    // reduced unknowns (reduce_coupling()), solved by GMRES preconditioned with the factor of
-    // the symmetric matrix.
-    auto solve_coupled = [&](const Eigen::VectorXd& rhs, Eigen::VectorXd& solution) {
-      const std::vector<ContactSystem::FrictionCoupling> terms =
-          impl_->contact->friction_coupling(model_);
-      if (terms.empty()) {
-        LowRankSolveReport direct;
-        direct.status = impl_->solver->solve(rhs, solution);
-        direct.converged = true;
-        return direct;
-      }
-      Eigen::VectorXd b = rhs;
-      const auto [u, v] =
-          reduce_coupling(terms, map, contact_point_dofs, contact_transform, transforms, b);
-      const Eigen::Index m = u.cols();
-      // GMRES ends within m + 1 iterations but for the rounding; a try that needs more than
-      // the budget is cut as before.
-      const int budget = static_cast<int>(
-          std::min<Eigen::Index>(m + 10, options_.coupled_friction_iterations_max));
-      // Conjugate gradients solve to their own tolerance: GMRES can reach no better.
-      const bool exact = !options_.conjugate_gradients;
-      const double tolerance = exact ? options_.coupled_friction_tolerance
-                                     : std::max(options_.coupled_friction_tolerance,
-                                                options_.conjugate_gradients->tolerance);
-      const LowRankSolveReport gmres = solve_low_rank_update(*impl_->solver, a.matrix(), u, v, b,
-                                                             solution, tolerance, budget, exact);
-      counters_.coupled_friction_iterations += gmres.iterations;
-      return gmres;
-    };
-    for (;;) {
-      ++iteration;
-      Eigen::VectorXd f_iteration = f;
-      if (impl_->contact) {
-        if (assemble && iteration > 1)
-          a.assign_values(base_values);
-        if (assemble)
-          rhs_correction = base_correction;
-        Eigen::MatrixXd spring;
-        Eigen::VectorXd load;
-        for (int i = 0; i < impl_->contact->n_points(); ++i) {
-          const ContactPoint& point = impl_->contact->points()[at(i)];
-          if (point.mode == ContactMode::open)
-            continue; // no spring, no load
-          // The upper triangle is what the assembler reads; a transform to the reduced
-          // unknowns needs the whole matrix.
-          const bool upper = contact_transform[at(i)] < 0;
-          if (impl_->contact->contribution(model_, i, assemble ? &spring : nullptr, load, upper)) {
-            ++counters_.friction_terms;
-            had_friction = true;
-          }
-          const std::span<const int> dofs = contact_point_dofs(i);
-          NMM_ASSERT(static_cast<std::size_t>(load.size()) == dofs.size(),
-                     "a contact point's unknowns stay those of the step's start");
-          for (std::size_t j = 0; j < dofs.size(); ++j)
-            f_iteration(dofs[j]) += load(static_cast<Eigen::Index>(j));
-          if (assemble)
-            system.scatter(a, first_contact_plan + i, spring, contact_transform[at(i)]);
-        }
-      }
-      clock.lap(counters_.seconds_contact_springs);
-      const Eigen::VectorXd rhs = map.restrict(f_iteration) + rhs_correction;
-      clock.lap(counters_.seconds_assembly);
-      if (rebuilt || !impl_->system.analysed) {
-        if (impl_->solver->analyze(a.matrix()) != SolveStatus::ok)
-          throw NumericalError("the symbolic analysis of the step matrix failed");
-        impl_->system.analysed = true;
-        rebuilt = false;
-      }
-      clock.lap(counters_.seconds_analysis);
-      if (assemble) {
-        const SolveStatus factor = impl_->solver->factorize(a.matrix());
-        if (factor != SolveStatus::ok)
-          throw NumericalError(
-              singular_message(model_, map, impl_->solver->failed_column(), factor));
-        ++factorisations;
-      }
-      clock.lap(counters_.seconds_factorization);
-      SolveStatus solved = SolveStatus::ok;
-      if (coupled) {
-        const LowRankSolveReport gmres = solve_coupled(rhs, reduced);
-        solved = gmres.status;
-        if (solved == SolveStatus::ok && !gmres.converged)
-          break; // the try fails (its step is cut)
-      } else {
-        solved = impl_->solver->solve(rhs, reduced);
-      }
-      if (solved == SolveStatus::not_positive_definite) // found by CHOLMOD after CG failed
-        throw NumericalError(singular_message(model_, map, impl_->solver->failed_column(), solved));
-      if (solved != SolveStatus::ok)
-        throw NumericalError("the solve of the step system failed");
-      raw = map.expand(reduced);
-      if (!raw.allFinite())
-        throw NumericalError("the step displacement is not finite");
-      clock.lap(counters_.seconds_solve);
-      if (!impl_->contact)
-        break;
-      const ModeUpdate update = impl_->contact->update_modes(model_, raw);
-      clock.lap(counters_.seconds_contact_modes);
-      if (impl_->contact->converged(update)) {
-        // Augmented Lagrange: contacts still penetrating by more than the tolerance move
-        // their springs' zeros by it and the step is solved again with the same factor.
-        const ContactOptions& contact = impl_->contact->options();
-        if (augmentations < contact.augment_max && impl_->contact->augment(raw)) {
-          ++augmentations;
-          ++counters_.augmentations;
-          open_close = 0; // the pass changed the loads: a new iteration, with its own budget
-          assemble = false;
-          continue;
-        }
-        if (augmentations > 0) // the passes ran out or stopped shrinking it: say so once
-          warn_penetration(impl_->contact->max_penetration(), contact, false);
-        converged = true;
-        break;
-      }
-      assemble = update.changes > 0;
-      // Shi's open-close iterations are those that open, close, stick or slip a contact. In a
-      // dynamic step, an iteration that only moves the springs of closed edge-to-edge
-      // contacts along their overlaps (the lift-off points converging on where the pressure
-      // ends) is none: a shorter step does not make those moves fewer, so they never cut it;
-      // they only count against the cap of ten times open_close_max refactorisations.
-      // Counted as open-close iterations, they cut the steps of a block sliding on an NMM
-      // ramp for 1 s 57 times instead of 28 at 40 E, and 1416 times instead of 284 at
-      // 1000 E (examples/03 with dt = 1e-2 s). A static step counts them: its inertia term
-      // only steadies it, and where bodies fall onto others a cut step is what keeps them
-      // apart (examples/12 at phi = 30 degrees: uncut, its second step ended with 2.2 mm of
-      // penetration instead of 0.06 mm; docs/formulation.md, "Static steps").
-      if (assemble && (update.changes > update.moves || !dynamic))
-        ++open_close;
-      // The initial equilibrium cannot be cut: it has ten times the iterations. So has a step
-      // of a static analysis whose last solve moved less than 1% of the step displacement
-      // limit: it is short in Shi's sense already (8.5 [1]), and its modes change because
-      // slip spreads along the joints, one contact further each iteration, which a cut does
-      // not shorten: it only carries less of the load (docs/formulation.md, "Static steps").
-      const bool settling =
-          equilibrium || (!dynamic && model_.largest_displacement(raw) < 0.01 * limit);
-      if (assemble ? open_close >= options_.open_close_max * (settling ? 10 : 1) ||
-                         factorisations >= 10 * options_.open_close_max
-                   : ++friction_solves >= options_.friction_solves_max)
-        break;
-    }
-    report.open_close_iterations = iteration;
-    if (!converged && impl_->contact->back_to_converged(raw)) {
-      // A pass moved the springs' zeros and the contacts no longer settle: the step keeps
-      // its least penetrating converged solve (a penalty solution, only deeper) rather than
-      // being cut. Cutting these steps, the 1000-block pile of bench/stress.py
-      // pile_1000_al was cut 2504 times in 750 steps and never settled.
-      converged = true;
-      warn_penetration(impl_->contact->max_penetration(), impl_->contact->options(), true);
-    }
+    const StepTries this_try{.dt = dt, .coupled = coupled, .cuts = cut};
+    const OpenCloseResult iteration =
+        iterate_open_close(context, this_try, impl_->system, system, clock, raw);
+    const bool converged = iteration.converged;
+    const int factorisations = iteration.factorisations;
+    const bool had_friction = iteration.had_friction;
+    report.open_close_iterations = iteration.iterations;
     if (!converged && !coupled && had_friction && !equilibrium && options_.coupled_friction) {
       // Friction as loads from the normal forces of the last iteration can keep the iteration
       // from converging where the contact springs are much stiffer than the bodies (the
@@ -697,39 +438,6 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   clock.lap(counters_.seconds_update);
   counters_.seconds_steps += clock.elapsed();
   return report;
-}
-
-void TimeStepper::warn_penetration(double penetration,
-                                   const ContactOptions& options,
-                                   bool unsettled) {
-  // One warning a run for each of the two ways the passes end short of the tolerance.
-  const std::string_view what =
-      unsettled ? "after an augmented-Lagrange pass the contacts" : "augmented-Lagrange passes";
-  if (penetration <= options.penetration_tolerance ||
-      std::any_of(warnings_.begin(), warnings_.end(),
-                  [&](const std::string& w) { return w.find(what) != std::string::npos; }))
-    return;
-  std::ostringstream w;
-  w << "step " << step_ + 1 << ": ";
-  if (unsettled)
-    w << what << " changed mode without settling, so the step kept its least penetrating "
-      << "converged solve, where a contact penetrated by " << penetration << " m";
-  else
-    w << "after its " << what << " (at most " << options.augment_max
-      << ", fewer when one leaves the deepest contact no shallower) a contact still "
-         "penetrated by "
-      << penetration << " m";
-  w << ", more than penetration_tolerance (" << options.penetration_tolerance
-    << " m); the step went on so. ";
-  if (unsettled)
-    w << "The passes push the contacts apart further than they settle in a step (many "
-         "bodies landing at once): a larger penetration_tolerance, or a larger penalty, "
-         "needs smaller pushes";
-  else
-    w << "They converge slowly where the pressure concentrates (the corners of pressed "
-         "faces, a tolerance near the hard-contact limit): a larger penetration_tolerance, or "
-         "a larger penalty, holds it in fewer passes";
-  warnings_.push_back(w.str());
 }
 
 namespace {

@@ -225,11 +225,6 @@ private:
   bool has_mass_ = false; ///< some material has a density
   StepperCounters counters_;
   std::vector<std::string> warnings_;
-  /// Adds the warning that a step's augmented-Lagrange passes ended (or, @p unsettled, that
-  /// the iteration after one did not converge and the step kept its least penetrating
-  /// converged solve) with the contacts still penetrating by @p penetration, more than the
-  /// tolerance (once a run for each).
-  void warn_penetration(double penetration, const ContactOptions& options, bool unsettled);
   std::unique_ptr<Impl> impl_;
 };
 
