@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // solver/step_context.hpp — what the parts of one time step share (time_stepper.cpp,
-// step_system and open_close so far): the kind of step, the stepper's inputs for it, the
-// state of its tries, and the clock whose laps are StepperCounters' seconds_*.
+// step_control, step_system, open_close, geometry_update): the kind of step, the stepper's
+// inputs for it, the state of its tries, and the clock whose laps are StepperCounters'
+// seconds_*.
 #pragma once
 
 #include "contact/contact_system.hpp"

@@ -5,6 +5,8 @@
 #include "mesh/error.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <string>
 #include <utility>
 
 namespace nmm {
@@ -288,6 +290,82 @@ build_step_system(const StepContext& context, StepSystemState& state, double dt,
   assemble_step(context, dt, state, system);
   clock.lap(context.counters.seconds_assembly);
   return system;
+}
+
+void StepSystemState::save_state(StateWriter& out) const {
+  // The last step's slaves: the next step's elimination prefers them (DofMap's previous).
+  std::vector<int> slaves;
+  if (map) {
+    for (int raw = 0; raw < map->n_raw(); ++raw) {
+      if (map->is_slave(raw))
+        slaves.push_back(raw);
+    }
+  }
+  out.put(map != nullptr);
+  out.put(slaves);
+  out.put(stiffness != nullptr);
+  if (stiffness) {
+    out.put(static_cast<std::int64_t>(pattern.n_dofs()));
+    out.put(pattern_start);
+    out.put(pattern_dofs);
+    out.put(coupling_start);
+    out.put(coupling_dofs);
+  }
+}
+
+void StepSystemState::load_state(StateReader& in, int n_dofs) {
+  const bool had_map = in.boolean();
+  const std::vector<int> slaves = in.integers();
+  map.reset();
+  if (had_map) {
+    // A map whose only use is to be the next step's "previous": each saved slave is the
+    // preferred pivot of a row of its own, so exactly those are slaves.
+    std::vector<LinearConstraint> rows;
+    rows.reserve(slaves.size());
+    for (const int raw : slaves) {
+      if (raw < 0 || raw >= n_dofs)
+        in.fail("a slave unknown " + std::to_string(raw) + " of " + std::to_string(n_dofs));
+      rows.push_back(LinearConstraint{{{raw, 1.0}}, 0.0, raw, "restart"});
+    }
+    map = std::make_shared<const DofMap>(n_dofs, rows);
+  }
+  stiffness.reset();
+  analysed = false;
+  if (in.boolean()) {
+    const std::int64_t n = in.integer();
+    pattern_start = in.integers();
+    pattern_dofs = in.integers();
+    coupling_start = in.integers();
+    coupling_dofs = in.integers();
+    auto check = [&](const std::vector<int>& starts, const std::vector<int>& dofs) {
+      if (starts.empty() || starts.front() != 0 || !std::is_sorted(starts.begin(), starts.end()) ||
+          starts.back() != static_cast<int>(dofs.size()))
+        in.fail("the couplings of the sparsity pattern are inconsistent");
+      for (const int d : dofs) {
+        if (d < -1 || d >= n)
+          in.fail("the couplings of the sparsity pattern are inconsistent");
+      }
+    };
+    check(pattern_start, pattern_dofs);
+    check(coupling_start, coupling_dofs);
+    SparsityBuilder builder(static_cast<int>(n));
+    for (std::size_t k = 0; k + 1 < pattern_start.size(); ++k)
+      builder.add(std::span<const int>(pattern_dofs.data() + pattern_start[k],
+                                       at(pattern_start[k + 1] - pattern_start[k])));
+    pattern = builder.build();
+    stiffness = std::make_unique<Assembler>(pattern);
+    for (std::size_t k = 0; k + 1 < coupling_start.size(); ++k) {
+      const std::span<const int> dofs(coupling_dofs.data() + coupling_start[k],
+                                      at(coupling_start[k + 1] - coupling_start[k]));
+      for (const int i : dofs) {
+        for (const int j : dofs) {
+          if (i >= 0 && j >= i && !pattern.contains(i, j))
+            in.fail("a coupling lies outside the sparsity pattern");
+        }
+      }
+      (void)stiffness->plan(dofs);
+    }
+  }
 }
 
 } // namespace nmm

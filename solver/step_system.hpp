@@ -7,6 +7,7 @@
 
 #include "manifold/element.hpp"
 #include "manifold/linear_constraint.hpp"
+#include "mesh/state_archive.hpp"
 #include "solver/assembler.hpp"
 #include "solver/dof_map.hpp"
 #include "solver/sparsity.hpp"
@@ -73,6 +74,14 @@ struct StepSystemState {
   std::vector<int> pattern_start;
   std::vector<int> pattern_dofs;
   bool analysed = false; ///< the solver has the symbolic analysis of the pattern
+
+  /// Writes the last map's slaves and the couplings of the pattern and of the plans, for a
+  /// restart checkpoint (TimeStepper::save_state()).
+  void save_state(StateWriter& out) const;
+  /// Reads what save_state() wrote: a map with the same slaves (to be the next step's
+  /// previous), the same pattern and plans, to be analysed again. @p n_dofs: raw unknowns
+  /// of the model. @throws InputError when they are inconsistent.
+  void load_state(StateReader& in, int n_dofs);
 };
 
 /// The linear system of one try: its map, couplings and loads, the matrix being in the

@@ -142,6 +142,13 @@ struct StepperCounters {
   double seconds_update = 0.0;          ///< velocities, stresses, contact states, geometry
 };
 
+// The parts of a step (solver/step_context.hpp, step_control.hpp).
+struct StepContext;
+struct StepKind;
+struct StepTries;
+struct TrySolution;
+class StepClock;
+
 /// Advances a model through time steps.
 class TimeStepper {
 public:
@@ -212,9 +219,16 @@ public:
 
 private:
   struct Impl;
+  /// One step: its time step, its tries (try_until_accepted()) and commit_step().
   StepReport advance(double until, bool equilibrium);
-  /// 1/2 v^T M v with the element masses of the last assembly, J.
-  double kinetic_energy(const Eigen::VectorXd& velocity) const;
+  /// Tries the step, cut or with friction coupled after each try refused (step_control.hpp),
+  /// until one is accepted: its solution.
+  TrySolution try_until_accepted(const StepContext& context,
+                                 StepTries& tries,
+                                 StepReport& report,
+                                 StepClock& clock);
+  /// Velocities, contact states, stresses and geometry take the accepted step; time advances.
+  void commit_step(const StepKind& kind, double dt, TrySolution& solution, StepReport& report);
   Model& model_;
   Scene scene_;
   StepperOptions options_;
