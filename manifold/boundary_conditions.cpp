@@ -74,6 +74,18 @@ support_constraints(const Model& model, const std::vector<SupportPoint>& support
   return rows;
 }
 
+void hold_supported_points(std::vector<SupportPoint>& supports, double time) {
+  for (SupportPoint& s : supports) {
+    if (s.method != SupportMethod::exact)
+      continue;
+    const Point2 held = s.start + s.ramp.at(time) * s.displacement;
+    if (s.fix_x)
+      s.point.position.x() = held.x();
+    if (s.fix_y)
+      s.point.position.y() = held.y();
+  }
+}
+
 SupportSpring
 support_spring(const Model& model, const SupportPoint& support, double stiffness, double time) {
   const PointInterpolation t =

@@ -228,7 +228,7 @@ OpenCloseResult OpenCloseIteration::run() {
     if (is_spent(update))
       break;
   }
-  if (!result_.converged && contact->back_to_converged(raw_)) {
+  if (!result_.converged && !result_.not_finite && contact->back_to_converged(raw_)) {
     // A pass moved the springs' zeros and the contacts no longer settle: the step keeps
     // its least penetrating converged solve (a penalty solution, only deeper) rather than
     // being cut. Cutting these steps, the 1000-block pile of bench/stress.py
@@ -263,8 +263,11 @@ bool OpenCloseIteration::solve() {
   if (solved != SolveStatus::ok)
     throw NumericalError("the solve of the step system failed");
   raw_ = map.expand(reduced_);
-  if (!raw_.allFinite())
-    throw NumericalError("the step displacement is not finite");
+  if (!raw_.allFinite()) {
+    result_.converged = false;
+    result_.not_finite = true;
+    return false;
+  }
   clock_.lap(context_.counters.seconds_solve);
   return true;
 }

@@ -18,6 +18,7 @@ struct OpenCloseResult {
   int iterations = 0;        ///< solves, friction solves included (StepReport)
   int factorisations = 0;    ///< refactorisations of the step matrix
   bool had_friction = false; ///< a sliding contact with friction in some iteration
+  bool not_finite = false;   ///< a solve gave a step displacement that is not finite
 };
 
 /// Iterates the try @p tries of @p system to convergence or to the iteration budget
@@ -27,7 +28,8 @@ struct OpenCloseResult {
 /// @p raw: the step displacement of the last solve, or of the converged one the contacts went
 /// back to (ContactSystem::back_to_converged()); left as it was when the try's first coupled
 /// solve does not converge.
-/// @throws NumericalError when the step matrix is singular or a solve fails.
+/// @throws NumericalError when the step matrix is singular or a solve fails; a solve whose
+///         step displacement is not finite ends the try (OpenCloseResult::not_finite).
 OpenCloseResult iterate_open_close(const StepContext& context,
                                    const StepTries& tries,
                                    StepSystemState& state,

@@ -115,6 +115,17 @@ judge_iteration(const StepContext& context, const OpenCloseResult& iteration, St
     return TryVerdict::accept;
   const StepperOptions& options = context.options;
   const bool equilibrium = context.kind.equilibrium;
+  if (iteration.not_finite) {
+    // A shorter step is a better-conditioned system (the mass term grows as 1/dt²).
+    if (!equilibrium && cut(context, tries, tries.dt / 3.0))
+      return TryVerdict::again;
+    if (equilibrium) // (TimeStepper::equilibrate() says where)
+      throw NumericalError("the step displacement is not finite");
+    throw NumericalError("step " + std::to_string(context.step) +
+                         ": the step displacement is not finite even with a time step cut " +
+                         std::to_string(options.max_step_cuts) +
+                         " times; check the penalty, the supports and the time step");
+  }
   if (!tries.coupled && iteration.had_friction && !equilibrium && options.coupled_friction) {
     // Friction as loads from the normal forces of the last iteration can keep the iteration
     // from converging where the contact springs are much stiffer than the bodies (the

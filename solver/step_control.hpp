@@ -51,7 +51,8 @@ enum class TryVerdict { accept, again };
 [[nodiscard]] double choose_time_step(const StepContext& context, double until);
 
 /// Judges the open-close iteration: a try that did not converge is tried again with coupled
-/// friction (once, when friction took part) or cut to a third.
+/// friction (once, when friction took part) or cut to a third; one whose step displacement
+/// was not finite is cut to a third.
 /// @throws NumericalError when it cannot be cut any more (or is the initial equilibrium).
 [[nodiscard]] TryVerdict
 judge_iteration(const StepContext& context, const OpenCloseResult& iteration, StepTries& tries);

@@ -262,7 +262,7 @@ void TimeStepper::commit_step(const StepKind& kind,
   }
   model_.accumulate_stress(raw);
   ++counters_.stress_updates;
-  update_geometry(model_, scene_, raw, velocity_);
+  update_geometry(model_, scene_, raw, velocity_, time_ + dt);
   if (!kind.equilibrium) {
     time_ += dt;
     ++step_;

@@ -197,6 +197,7 @@ struct Incline {
   double young = 1.0e10;
   double penetration_tolerance = 0.0; ///< augmented Lagrange when > 0
   ElementKind block_kind = ElementKind::nmm;
+  int order = 0; ///< of the NMM covers (ramp, and block when block_kind is nmm)
   /// StepperOptions::coupled_friction: false cuts a step whose open-close iteration does not
   /// converge at once.
   bool coupled_friction = true;
@@ -224,7 +225,7 @@ struct Incline {
     const ElasticMaterial rock = elastic(young, 0.25, 2500.0, PlaneCondition::strain);
     testing::Setup s = testing::make_setup(
         {ramp, block}, {line("slip", a, a + along), line("base", down, Point2(6, 6) + down)}, {0},
-        nullptr, 0.125, rock, 0, {ElementKind::nmm, block_kind});
+        nullptr, 0.125, rock, order, {ElementKind::nmm, block_kind});
     Scene scene;
     scene.supports = curve_support_points(s.model, 1, true, true, SupportMethod::exact, "base");
     scene.body_loads.push_back({{0.0, -9.81}, {}});
