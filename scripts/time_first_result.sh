@@ -9,8 +9,8 @@
 #                                           build/first-result-root, removed first)
 # Steps, each timed: debootstrap --variant=minbase bookworm (not part of the figure: the
 # newcomer has a Debian 12 already), apt-get install git ca-certificates (the newcomer's
-# "install git"), git clone of this repository's committed HEAD, then scripts/run.sh in the
-# clone. Nothing comes from the host's package cache or ccache: packages are downloaded from
+# "install git"), git clone of this repository's committed HEAD (by the host's git), then
+# scripts/run.sh in the clone. Nothing comes from the host's package cache or ccache: packages are downloaded from
 # DEBIAN_MIRROR (default deb.debian.org) and everything is compiled. The mounts live in a
 # private mount namespace (unshare) and vanish with the script.
 set -euo pipefail
@@ -38,9 +38,8 @@ if [[ -e $root ]]; then
     die "something is mounted under $root; unmount it first"
   rm -rf --one-file-system "$root"
 fi
-timed "debootstrap (not counted)" \
-  debootstrap --variant=minbase bookworm "$root" "$mirror" > "$root.debootstrap.log" 2>&1 ||
-  die "debootstrap failed; see $root.debootstrap.log"
+make_root() { debootstrap --variant=minbase bookworm "$root" "$mirror" > "$root.debootstrap.log" 2>&1; }
+timed "debootstrap (not counted)" make_root || die "debootstrap failed; see $root.debootstrap.log"
 cat > "$root/etc/apt/sources.list" << EOF
 deb $mirror bookworm main
 deb $mirror bookworm-updates main
@@ -51,13 +50,13 @@ chmod +x "$root/usr/sbin/policy-rc.d"
 mount -t proc proc "$root/proc"
 mount -t sysfs sysfs "$root/sys"
 mount --rbind /dev "$root/dev"
-mkdir -p "$root/src"
-mount --bind -o ro "$repo" "$root/src"
 
 in_root() { chroot "$root" env -i HOME=/root PATH=/usr/sbin:/usr/bin:/sbin:/bin LANG=C.UTF-8 "$@"; }
 total=$SECONDS
 timed "apt-get install git" in_root sh -c \
   'apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq git ca-certificates > /dev/null'
-timed "git clone" in_root git clone -q /src /root/nmm
+# Cloned by the host's git (a worktree's .git points outside it), as from a server: no
+# hard links, no build tree, only the committed files.
+timed "git clone" git clone -q --no-hardlinks "file://$repo" "$root/root/nmm"
 timed "bash scripts/run.sh (packages, build, the example)" in_root sh -c 'cd /root/nmm && bash scripts/run.sh'
 echo "time_first_result.sh: from a fresh Debian 12 to the example's result: $((SECONDS - total)) s" >&2
