@@ -32,7 +32,10 @@ bool is_full(const fs::path& directory) {
 
 } // namespace
 
-std::string write_failure_message(const fs::path& file, int error, const std::string& what) {
+std::string write_failure_message(const fs::path& file,
+                                  int error,
+                                  const std::string& what,
+                                  const std::string& writer_reason) {
   const fs::path directory = file.has_parent_path() ? file.parent_path() : fs::path(".");
   const std::string reason =
       error != 0 ? " (" + std::generic_category().message(error) + ")" : std::string();
@@ -52,8 +55,9 @@ std::string write_failure_message(const fs::path& file, int error, const std::st
            "larger [output] every, fewer steps)";
   }
   return "cannot write " + target + ": " +
-         (error != 0 ? std::generic_category().message(error)
-                     : std::string("the writer gave no reason")) +
+         (error != 0               ? std::generic_category().message(error)
+          : !writer_reason.empty() ? writer_reason
+                                   : std::string("the writer gave no reason")) +
          "; check the output folder " + quoted(directory) + " and its free space";
 }
 

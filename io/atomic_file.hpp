@@ -25,9 +25,12 @@ public:
 /// for EFBIG (SIGXFSZ is ignored by `nmm`, so a file-size limit makes writes fail with it),
 /// else "cannot write 'FILE': reason; ...". When @p error is 0 or another code the file
 /// system is examined: a disk with no free block left is reported as full. @p what, when
-/// given, says what was written: "cannot write WHAT to 'FILE'".
-[[nodiscard]] std::string
-write_failure_message(const std::filesystem::path& file, int error, const std::string& what = {});
+/// given, says what was written: "cannot write WHAT to 'FILE'". @p writer_reason, when given,
+/// is the writer's own account, said when errno gives none ("cannot write 'FILE': REASON").
+[[nodiscard]] std::string write_failure_message(const std::filesystem::path& file,
+                                                int error,
+                                                const std::string& what = {},
+                                                const std::string& writer_reason = {});
 
 /// Writes @p file through @p write_to(temporary path), which returns whether it wrote
 /// everything, and renames the temporary file into place, so a reader (ParaView, a script

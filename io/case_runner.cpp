@@ -3,6 +3,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
+#include "io/cover_warnings.hpp"
 #include "io/gmsh_reader.hpp"
 #include "io/step_output.hpp"
 #include "io/text.hpp"
@@ -463,8 +464,8 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   geometry_ = build_case_geometry(spec_, on_phase);
   const PhysicalMesh& physical = geometry_.physical;
   warnings_ = spec_.warnings;
-  for (const std::string& w : geometry_.covers.warnings)
-    warnings_.push_back(geometry_name(spec_) + ": " + w);
+  for (std::string& w : cover_system_warnings(spec_, geometry_))
+    warnings_.push_back(std::move(w));
 
   std::vector<ElasticMaterial> materials;
   materials.reserve(physical.regions.size());
@@ -699,13 +700,25 @@ void CaseAnalysis::add_scale_warnings(const BoundingBox& box, double model_size)
   }
   if (small_blocks > 0) {
     const Block& block = covers.blocks[at(smallest)];
+    // A global size only when the triangles it needs stay within max_triangles.
+    const double wanted = std::sqrt(block.area);
+    const long long triangles = triangles_at_size(geometry_.physical, wanted);
+    const std::string fix =
+        triangles <= spec_.cover_mesh.max_triangles
+            ? "use a size below " + number_text(wanted) +
+                  " m (or model = \"dda\" for rigid-like blocks)"
+            : "make the cover mesh finer around it only ([cover_mesh] kind = \"gmsh\" on a .msh "
+              "geometry graded there; a size below " +
+                  number_text(wanted) + " m everywhere would need about " +
+                  std::to_string(triangles) + " triangles, more than max_triangles = " +
+                  std::to_string(spec_.cover_mesh.max_triangles) +
+                  "), or model = \"dda\" for rigid-like blocks";
     warn(spec_.cover_mesh.size_line,
          std::to_string(small_blocks) + (small_blocks == 1 ? " nmm block is" : " nmm blocks are") +
              " much smaller than the math triangles ([cover_mesh] size = " +
              number_text(spec_.cover_mesh.size) + " m), the smallest " + number_text(block.area) +
              " m² near " + point_text(covers.loops[at(block.loops.front())].vertices.front(), 6) +
-             ": such a block moves right but its stress is coarse; use a size below " +
-             number_text(std::sqrt(block.area)) + " m (or model = \"dda\" for rigid-like blocks)");
+             ": such a block moves right but its stress is coarse; " + fix);
   }
 }
 
@@ -987,6 +1000,10 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     analysis.restore_monitor_starts(restored->monitor_starts);
     history.emplace(dir / "history.csv", monitor_names, restored->history_bytes);
     remove_old_output(dir, restored->step);
+    if (options.on_warning) {
+      for (const std::string& w : restart_warnings)
+        options.on_warning(w);
+    }
   } else {
     create_output_dir(dir);
     lock.emplace(dir);

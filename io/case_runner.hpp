@@ -138,6 +138,10 @@ struct RunOptions {
   const std::atomic<bool>* stop = nullptr;
   /// Called after every step (for the progress line); may be empty.
   std::function<void(const RunProgress&)> on_step;
+  /// Called with each warning that arises when the run starts, before its first step (a
+  /// case file edited since the checkpoint of a restart), so that it is seen then and not
+  /// only in the closing summary; may be empty. RunResult::warnings lists them too.
+  std::function<void(const std::string&)> on_warning;
   /// Wall time already spent before run_case() (reading the case, building the model), s;
   /// counted in summary.json's wall_seconds.
   double seconds_before = 0.0;

@@ -7,6 +7,7 @@
 #include "io/case_runner.hpp"
 #include "io/checkpoint.hpp"
 #include "io/cover_mesh_output.hpp"
+#include "io/cover_warnings.hpp"
 #include "io/demo.hpp"
 #include "io/dependency_info.hpp"
 #include "io/progress.hpp"
@@ -127,6 +128,7 @@ int run_command(const RunArguments& args, bool is_bundled_example) {
     options.restart = true;
   }
   options.stop = &stop_requested;
+  options.on_warning = [&](const std::string& warning) { printer.warning(warning); };
   options.on_step = [&](const nmm::RunProgress& progress) {
     printer.step(progress, progress.report->step == progress.steps);
   };
@@ -183,8 +185,8 @@ int mesh_command(const std::string& case_file, const std::string& output) {
   nmm::write_boundary_vtp(dir / "boundary.vtp", geometry.covers);
   for (const std::string& warning : spec.warnings)
     std::cout << "warning: " << warning << '\n';
-  for (const std::string& warning : geometry.covers.warnings)
-    std::cout << "warning: " << spec.geometry.filename().string() << ": " << warning << '\n';
+  for (const std::string& warning : nmm::cover_system_warnings(spec, geometry))
+    std::cout << "warning: " << warning << '\n';
   std::cout << "nmm: " << geometry.covers.n_elements() << " elements, "
             << geometry.covers.n_covers() << " covers, " << geometry.covers.n_blocks()
             << " blocks on " << geometry.math.n_triangles() << " math triangles\n"

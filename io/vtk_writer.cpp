@@ -11,7 +11,10 @@
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -29,8 +32,11 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <limits>
 #include <numeric>
+#include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <system_error>
 #include <type_traits>
@@ -395,6 +401,87 @@ vtkNew<vtkCellArray> to_vtk_cells(const std::vector<std::vector<int>>& loops) {
   return cells;
 }
 
+/// Where VTK's own messages go instead of the terminal. VTK prints an error as "ERROR: In
+/// .../vtkXMLWriter.cxx, line N", then "vtkXMLUnstructuredGridWriter (0x55...): ...", and its
+/// logger repeats it with a time stamp, in colour, with the pipeline's request dumped: source
+/// lines and addresses that say neither which file failed nor what to do. This window keeps
+/// the text for write_xml(), which reports a failed write with the file, the reason and
+/// what to do (write_file_atomically()), VTK's words only where the system gave no reason.
+class MessageWindow final : public vtkOutputWindow {
+public:
+  static MessageWindow* New();
+  void DisplayText(const char* text) override {
+    if (text != nullptr)
+      text_ += text;
+  }
+  /// What VTK said since the last call.
+  std::string take() { return std::exchange(text_, std::string()); }
+
+private:
+  std::string text_;
+};
+
+vtkStandardNewMacro(MessageWindow);
+
+/// The window, made VTK's output window and its logger silenced on stderr at the first call.
+MessageWindow& vtk_messages() {
+  static MessageWindow* const window = [] {
+    MessageWindow* created = MessageWindow::New();
+    vtkOutputWindow::SetInstance(created); // VTK holds it until the process ends
+    created->Delete();
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+    return created;
+  }();
+  return *window;
+}
+
+/// A VTK XML writer that frees its appended-mode position arrays only when it allocated them.
+/// VTK 9.1's writers free them whenever a write fails (vtkXMLUnstructuredDataWriter::
+/// WriteAPiece on OutOfDiskSpaceError), also in inline mode, which never allocates them: a
+/// step file cut short by a full disk or a file-size limit then freed uninitialised pointers
+/// and crashed nmm, depending on what the heap held (tests/unit/io/messages_test.cpp).
+template <class Base> class GuardedWriter final : public Base {
+public:
+  static GuardedWriter* New() {
+    auto* writer = new GuardedWriter;
+    writer->InitializeObjectBase();
+    return writer;
+  }
+
+protected:
+  void AllocatePositionArrays() override {
+    Base::AllocatePositionArrays();
+    allocated_ = true;
+  }
+  void DeletePositionArrays() override {
+    if (allocated_)
+      Base::DeletePositionArrays();
+    allocated_ = false;
+  }
+
+private:
+  bool allocated_ = false;
+};
+
+/// VTK's messages as words: without the source line headers ("ERROR: In FILE, line N"), the
+/// object names with their addresses, the indented dumps of pipeline requests and the
+/// executive's echo of them ("returned failure for request"); "; " between messages.
+std::string vtk_words(const std::string& text) {
+  static const std::regex header(R"(^(ERROR|Warning|Generic Warning|Debug): In .*, line \d+$)");
+  static const std::regex object(R"(^\w+ ?\(0x[0-9a-fA-F]+\): )");
+  std::istringstream in(text);
+  std::string words;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line.front() == ' ' || std::regex_match(line, header) ||
+        line.find("returned failure for request") != std::string::npos)
+      continue;
+    line = std::regex_replace(line, object, "", std::regex_constants::format_first_only);
+    if (!line.empty())
+      words += (words.empty() ? "" : "; ") + line;
+  }
+  return words;
+}
+
 /// LZ4-compressed binary data, base64-encoded inside each DataArray element (VTK's "binary"
 /// mode). LZ4 against ZLib's default level on a 1e5-element step file: 3x faster to write,
 /// 1.4x larger (docs/benchmarks.md "Time step"); ParaView reads both (LZ4 since 5.5). Inline,
@@ -405,14 +492,29 @@ vtkNew<vtkCellArray> to_vtk_cells(const std::vector<std::vector<int>>& loops) {
 /// expat's callbacks coming at once; checked with Debian 12's ParaView 5.11 on 2026-12-01).
 /// Inline base64 costs a third more bytes and more write time (docs/benchmarks.md, "Output
 /// files").
-template <class Writer> bool write_xml(vtkDataObject* data, const fs::path& tmp) {
-  vtkNew<Writer> writer;
+/// VTK's messages never reach the terminal raw (MessageWindow): a failed write is reported by
+/// write_file_atomically() from errno (disk full, file too large, ...), or, when the system
+/// gave no reason, by VTK's words with @p file and what to do; messages of a write that
+/// succeeded are passed on as words, naming the file.
+template <class Writer>
+bool write_xml(vtkDataObject* data, const fs::path& tmp, const fs::path& file) {
+  MessageWindow& messages = vtk_messages();
+  static_cast<void>(messages.take());
+  vtkNew<GuardedWriter<Writer>> writer;
   writer->SetInputData(data);
   writer->SetFileName(tmp.c_str());
   writer->SetDataModeToBinary();
   writer->SetCompressorTypeToLZ4();
   writer->SetHeaderTypeToUInt64(); // blocks beyond 4 GiB stay readable
-  return writer->Write() == 1 && writer->GetErrorCode() == 0;
+  const bool written = writer->Write() == 1 && writer->GetErrorCode() == 0;
+  const int reason = errno; // of the failed write, for write_file_atomically()
+  const std::string said = vtk_words(messages.take());
+  if (!written && reason == 0 && !said.empty())
+    throw OutputWriteError(write_failure_message(file, 0, {}, "VTK's writer says: " + said));
+  if (written && !said.empty())
+    std::clog << "nmm: VTK, writing " << quoted(file) << ": " << said << '\n';
+  errno = reason;
+  return written;
 }
 
 void check_indices(const std::vector<int>& loop, std::size_t n_points, std::size_t min_size) {
@@ -451,7 +553,7 @@ void write_vtu(const fs::path& file, const PolygonMeshData& data) {
              "cell");
   add_arrays(grid->GetFieldData(), data.field_data, -1, "field");
   write_file_atomically(file, [&](const fs::path& tmp) {
-    return write_xml<vtkXMLUnstructuredGridWriter>(grid, tmp);
+    return write_xml<vtkXMLUnstructuredGridWriter>(grid, tmp, file);
   });
 }
 
@@ -466,7 +568,7 @@ void write_vtp_points(const fs::path& file, const PointCloudData& data) {
              "point");
   add_arrays(poly->GetFieldData(), data.field_data, -1, "field");
   write_file_atomically(
-      file, [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp); });
+      file, [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp, file); });
 }
 
 void write_vtp_lines(const fs::path& file, const PolylineData& data) {
@@ -481,7 +583,7 @@ void write_vtp_lines(const fs::path& file, const PolylineData& data) {
              "cell");
   add_arrays(poly->GetFieldData(), data.field_data, -1, "field");
   write_file_atomically(
-      file, [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp); });
+      file, [&](const fs::path& tmp) { return write_xml<vtkXMLPolyDataWriter>(poly, tmp, file); });
 }
 
 // ----------------------------------------------------------------------------------------

@@ -1031,13 +1031,8 @@ private:
         tiny_blocks[cover.block] = cover.area;
       }
     }
-    for (const auto& [block, cover_area] : tiny_blocks) {
-      std::ostringstream message;
-      message << "block " << block << " is too small for the cover mesh (a cover of " << cover_area
-              << " m² has no well-posed element near it); it keeps its own unknowns, which "
-                 "may be poorly conditioned: use a smaller [cover_mesh] size to resolve it";
-      result_.warnings.push_back(message.str());
-    }
+    for (const auto& [block, cover_area] : tiny_blocks)
+      result_.tiny_blocks.push_back({block, cover_area});
   }
 
   // ---- 4. blocks, loops, curve pieces ---------------------------------------------------

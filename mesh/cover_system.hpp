@@ -116,6 +116,15 @@ struct CoverMesherStats {
   double seconds_rest = 0.0;                 ///< covers, elements, blocks, loops
 };
 
+/// A block whose tiny covers found no well-posed element of their block (the tiny-cover rule,
+/// docs/cover-mesher.md): it keeps its own unknowns, which may be poorly conditioned. io/
+/// words the warning: where the block is, what cuts it and which change resolves it.
+struct TinyBlock {
+  int block = -1;
+  /// Area of one of its tiny covers that has no well-posed element near it, m².
+  double cover_area = 0.0;
+};
+
 /// The cover system of DESIGN.md: everything the manifold model needs about topology.
 struct CoverSystem {
   std::vector<Cover> covers;
@@ -126,8 +135,11 @@ struct CoverSystem {
   std::vector<std::vector<CurvePiece>> curve_pieces;
   /// For each math node, the physical covers of its star (0, 1 or more).
   std::vector<std::vector<int>> node_covers;
-  /// Problems that do not stop the analysis (a joint outside the material, tiny pieces).
+  /// Problems that do not stop the analysis (a joint outside the material, a joint ending
+  /// inside a block region); blocks too small for the cover mesh are in tiny_blocks.
   std::vector<std::string> warnings;
+  /// Blocks too small for the cover mesh, in block order.
+  std::vector<TinyBlock> tiny_blocks;
   CoverMesherStats stats;
 
   [[nodiscard]] int n_covers() const noexcept { return static_cast<int>(covers.size()); }

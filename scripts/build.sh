@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Configures and builds one build tree. Usage: scripts/build.sh release|asan
+# Configures and builds one build tree. Usage: scripts/build.sh release|asan [TARGET...]
+# (no targets: everything; scripts/run.sh builds only the target nmm).
 # release: build/release, optimised, warnings as errors (the tree `nmm` and the tests use).
 # asan:    build/asan, Debug with AddressSanitizer + UndefinedBehaviorSanitizer, no benchmarks
 #          and no regression tests, one ctest test per test executable (scripts/test.sh runs the
@@ -7,6 +8,8 @@
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 kind=${1:-release}
+targets=()
+for target in "${@:2}"; do targets+=(--target "$target"); done
 jobs=$(nproc 2>/dev/null || echo 2)
 case "$kind" in
   release) args=(-DCMAKE_BUILD_TYPE=Release -DNMM_WARNINGS_AS_ERRORS=ON) ;;
@@ -24,4 +27,4 @@ if [ ! -f "$root/build/$kind/CMakeCache.txt" ] && command -v ninja > /dev/null; 
 fi
 cmake -S "$root" -B "$root/build/$kind" "${args[@]}" > "$root/build/configure-$kind.log" 2>&1 ||
   { cat "$root/build/configure-$kind.log"; exit 1; }
-cmake --build "$root/build/$kind" -j "$jobs"
+cmake --build "$root/build/$kind" -j "$jobs" "${targets[@]}"

@@ -42,7 +42,6 @@ using testing::read_text;
 using testing::read_vtp;
 using testing::read_vtu;
 using testing::replaced;
-using testing::TempDir;
 using testing::text_values;
 using Names = std::vector<std::string>;
 
@@ -57,19 +56,9 @@ std::string example_case(const std::string& name, const std::string& geometry) {
                   "geometry = \"" + (folder / geometry).string() + "\"");
 }
 
-class Cli : public ::testing::Test {
+class Cli : public testing::NmmTest {
 protected:
-  Cli() : dir_("nmm_cli") {}
-  ProcessResult nmm(const std::vector<std::string>& args, const fs::path& cwd = {}) {
-    std::vector<std::string> argv{nmm_program.string()};
-    argv.insert(argv.end(), args.begin(), args.end());
-    return testing::run_process(argv, dir_.path() / ("nmm_" + std::to_string(++calls_)), cwd);
-  }
-  [[nodiscard]] const fs::path& dir() const { return dir_.path(); }
-
-private:
-  TempDir dir_;
-  int calls_ = 0;
+  Cli() : NmmTest(nmm_program, "nmm_cli") {}
 };
 
 void expect_all(const std::string& text, const std::vector<std::string>& parts) {

@@ -90,6 +90,14 @@ dir = "out"
 every = 2
 )";
 
+/// plate.geo with a joint "cut" that cuts a corner of 1 cm x 1 cm (5e-5 m²) off the plate at
+/// (2, 0), where the curves "base" and "right" meet: at plate_case's cover size 0.3 m every
+/// cover of that piece is below 1e-3 of its star (a block too small for the cover mesh).
+inline std::string corner_geo() {
+  return std::string(plate_geo) + "Point(9) = {1.98, -0.01, 0};\nPoint(10) = {2.01, 0.02, 0};\n"
+                                  "Line(6) = {9, 10};\nPhysical Curve(\"cut\") = {6};\n";
+}
+
 /// Writes plate.geo, plate_and_clay.geo and case.toml (@p case_text) into @p dir; returns
 /// the case file.
 inline std::filesystem::path write_case(const std::filesystem::path& dir,

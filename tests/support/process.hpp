@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 namespace nmm::testing {
@@ -116,5 +117,25 @@ inline ProcessResult run_process(const std::vector<std::string>& args,
   result.err = read_text(child.err_file);
   return result;
 }
+
+/// A test fixture that runs the `nmm` program at @p program, each run's stdout and stderr
+/// kept in files of the test's temporary folder (also the place for its inputs).
+class NmmTest : public ::testing::Test {
+protected:
+  NmmTest(fs::path program, const std::string& prefix)
+      : program_(std::move(program)), dir_(prefix) {}
+  /// Runs nmm with @p args in folder @p cwd (the current one when empty).
+  ProcessResult nmm(const std::vector<std::string>& args, const fs::path& cwd = {}) {
+    std::vector<std::string> argv{program_.string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return run_process(argv, dir_.path() / ("nmm_" + std::to_string(++calls_)), cwd);
+  }
+  [[nodiscard]] const fs::path& dir() const { return dir_.path(); }
+
+private:
+  fs::path program_;
+  TempDir dir_;
+  int calls_ = 0;
+};
 
 } // namespace nmm::testing
