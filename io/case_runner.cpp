@@ -376,6 +376,7 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
     session.emplace();
   GeometryReadOptions read_options;
   read_options.curve_tolerance = spec.cover_mesh.curve_tolerance;
+  read_options.cover_size = spec.cover_mesh.size;
   // A .geo is a program: one that loops or grows without end is stopped at these limits.
   read_options.time_limit = spec.geometry_time_limit;
   if (const double memory = memory_available().first; std::isfinite(memory))
@@ -431,7 +432,8 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
   } else {
     phase("meshing " + geometry_name(spec) + " with gmsh");
     g.math = make_gmsh_math_mesh(spec.geometry, g.physical, spec.cover_mesh.size,
-                                 static_cast<double>(spec.cover_mesh.max_triangles));
+                                 static_cast<double>(spec.cover_mesh.max_triangles),
+                                 spec.cover_mesh.geometry_sizes);
   }
   g.seconds_math_mesh = seconds_since(start);
   refuse_if_too_large(spec, static_cast<double>(g.math.n_triangles()));
@@ -463,6 +465,8 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   geometry_ = build_case_geometry(spec_, on_phase);
   const PhysicalMesh& physical = geometry_.physical;
   warnings_ = spec_.warnings;
+  for (const std::string& w : geometry_.physical.warnings)
+    warnings_.push_back(geometry_name(spec_) + ": " + w);
   for (const std::string& w : geometry_.covers.warnings)
     warnings_.push_back(geometry_name(spec_) + ": " + w);
 

@@ -183,6 +183,8 @@ int mesh_command(const std::string& case_file, const std::string& output) {
   nmm::write_boundary_vtp(dir / "boundary.vtp", geometry.covers);
   for (const std::string& warning : spec.warnings)
     std::cout << "warning: " << warning << '\n';
+  for (const std::string& warning : geometry.physical.warnings)
+    std::cout << "warning: " << spec.geometry.filename().string() << ": " << warning << '\n';
   for (const std::string& warning : geometry.covers.warnings)
     std::cout << "warning: " << spec.geometry.filename().string() << ": " << warning << '\n';
   std::cout << "nmm: " << geometry.covers.n_elements() << " elements, "
