@@ -52,7 +52,8 @@ constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geome
                                                "contact",    "boundary",  "load",
                                                "analysis",   "monitor",   "output"};
 constexpr std::string_view cover_mesh_keys[] = {
-    "kind", "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance"};
+    "kind",          "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance",
+    "geometry_sizes"};
 constexpr std::string_view material_keys[] = {"model",
                                               "density",
                                               "young",
@@ -551,7 +552,8 @@ std::filesystem::path resolve(const std::filesystem::path& case_file,
   return (case_file.parent_path() / path).lexically_normal();
 }
 
-CoverMeshSpec read_cover_mesh(Context& context, const toml::table& root) {
+CoverMeshSpec
+read_cover_mesh(Context& context, const toml::table& root, const std::filesystem::path& geometry) {
   const toml::table* table = single_table(context, root, "cover_mesh");
   if (!table)
     context.fail({1, 1}, "the case file has no [cover_mesh] table; add one with at least "
@@ -579,6 +581,21 @@ CoverMeshSpec read_cover_mesh(Context& context, const toml::table& root) {
   spec.curve_tolerance = view.number_or("curve_tolerance", 0.0, "m", "0.01");
   if (!(spec.curve_tolerance >= 0.0))
     view.fail_range("curve_tolerance", spec.curve_tolerance, "it must be >= 0 (m; 0 = automatic)");
+  const bool from_mesh = lower(geometry.extension().string()) == ".msh";
+  if (from_mesh && spec.curve_tolerance > 0.0)
+    view.fail_at_value("curve_tolerance",
+                       "[cover_mesh] curve_tolerance cannot apply to the .msh geometry " +
+                           quoted(geometry.filename()) +
+                           ": its curves are its mesh's line elements, with no curve to sample "
+                           "again; remove curve_tolerance (the mesh's curves are used as they "
+                           "are), or give the .geo as geometry to sample its curves");
+  spec.geometry_sizes = view.boolean_or("geometry_sizes", false);
+  if (spec.geometry_sizes && (from_mesh || spec.kind != CoverMeshKind::gmsh))
+    context.warn(view.key_position("geometry_sizes").line,
+                 from_mesh ? "[cover_mesh] geometry_sizes has no effect with a .msh geometry, "
+                             "whose own triangles are the cover mesh (graded as the .msh is)"
+                           : "[cover_mesh] geometry_sizes has no effect on a regular cover mesh; "
+                             "set kind = \"gmsh\" to grade the triangles by the .geo's sizes");
   return spec;
 }
 
@@ -1047,7 +1064,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
     top.fail_range("geometry_time_limit", spec.geometry_time_limit,
                    "it must be > 0 (s): the longest time reading the .geo may take");
 
-  spec.cover_mesh = read_cover_mesh(context, root);
+  spec.cover_mesh = read_cover_mesh(context, root, spec.geometry);
 
   std::vector<MaterialRead> materials;
   for (const NamedTable& item :

@@ -60,8 +60,13 @@ struct CoverMeshSpec {
   /// Covers smaller than this fraction of their math node's star get no unknowns of their
   /// own but the extension of a nearby element's field (docs/cover-mesher.md), in [0, 0.5).
   double min_cover_area_ratio = 1e-3;
-  /// Largest chord deviation when gmsh curves are sampled to polylines (m); 0 = automatic.
+  /// Largest chord deviation when gmsh curves are sampled to polylines (m); 0 = automatic
+  /// (1e-2 of `size`, chords no longer than `size`; GeometryReadOptions). Refused (> 0)
+  /// with a .msh geometry, whose curves are its mesh.
   double curve_tolerance = 0.0;
+  /// With kind = "gmsh" and a .geo: the .geo's own mesh sizes and Fields grade the
+  /// triangles, `size` the largest edge (make_gmsh_math_mesh()); false: uniform triangles.
+  bool geometry_sizes = false;
 };
 
 /// `[materials.NAME]`: one Physical Surface of the geometry.

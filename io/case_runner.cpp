@@ -377,6 +377,7 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
     session.emplace();
   GeometryReadOptions read_options;
   read_options.curve_tolerance = spec.cover_mesh.curve_tolerance;
+  read_options.cover_size = spec.cover_mesh.size;
   // A .geo is a program: one that loops or grows without end is stopped at these limits.
   read_options.time_limit = spec.geometry_time_limit;
   if (const double memory = memory_available().first; std::isfinite(memory))
@@ -432,7 +433,8 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
   } else {
     phase("meshing " + geometry_name(spec) + " with gmsh");
     g.math = make_gmsh_math_mesh(spec.geometry, g.physical, spec.cover_mesh.size,
-                                 static_cast<double>(spec.cover_mesh.max_triangles));
+                                 static_cast<double>(spec.cover_mesh.max_triangles),
+                                 spec.cover_mesh.geometry_sizes);
   }
   g.seconds_math_mesh = seconds_since(start);
   refuse_if_too_large(spec, static_cast<double>(g.math.n_triangles()));

@@ -82,7 +82,8 @@ public:
   [[nodiscard]] const std::vector<Point2>& monitor_starts() const noexcept {
     return monitor_starts_;
   }
-  /// The case file's warnings, then the cover mesher's (prefixed with the geometry file).
+  /// The case file's warnings, then the geometry reader's and the cover mesher's (prefixed
+  /// with the geometry file).
   /// The stepper's own warnings come later (TimeStepper::warnings()).
   [[nodiscard]] const std::vector<std::string>& warnings() const noexcept { return warnings_; }
   /// The current values of every monitor (CaseSpec::monitors order).

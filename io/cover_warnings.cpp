@@ -143,6 +143,8 @@ tiny_block_warning(const CaseSpec& spec, const CaseGeometry& geometry, const Tin
 std::vector<std::string> cover_system_warnings(const CaseSpec& spec, const CaseGeometry& geometry) {
   const std::string prefix = spec.geometry.filename().string() + ": ";
   std::vector<std::string> warnings;
+  for (const std::string& w : geometry.physical.warnings)
+    warnings.push_back(prefix + w);
   for (const std::string& w : geometry.covers.warnings)
     warnings.push_back(prefix + w);
   for (const TinyBlock& tiny : geometry.covers.tiny_blocks)

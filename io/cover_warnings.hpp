@@ -10,8 +10,9 @@
 
 namespace nmm {
 
-/// The cover mesher's warnings for @p spec, each starting with the geometry's file name: its
-/// own (a joint that cuts nothing, a joint ending inside a block region), then one per
+/// The geometry's and the cover mesher's warnings for @p spec, each starting with the
+/// geometry's file name: the physical mesh's (a curve sampled coarser than the cover mesh),
+/// the mesher's own (a joint that cuts nothing, a joint ending inside a block region), then one per
 /// CoverSystem::tiny_blocks entry (tiny_block_warning()). `nmm run`, `check` and `mesh` list
 /// these.
 [[nodiscard]] std::vector<std::string> cover_system_warnings(const CaseSpec& spec,

@@ -3,6 +3,7 @@
 
 #include "io/text.hpp"
 #include "mesh/cover_mesher.hpp"
+#include "mesh/curve_resolution.hpp"
 #include "mesh/error.hpp"
 #include "mesh/geometry.hpp"
 
@@ -466,8 +467,15 @@ Point2 planar(const Point3& p) { return {p.x(), p.y()}; }
 
 class ModelReader {
 public:
-  ModelReader(std::string file, double tolerance, double z_limit)
-      : file_(std::move(file)), tolerance_(tolerance), z_limit_(z_limit) {}
+  /// @p max_chord: the longest chord of a sampled curve (m), 0 for no bound.
+  ModelReader(std::string file, double tolerance, double max_chord, double z_limit)
+      : file_(std::move(file)), tolerance_(tolerance), max_chord_(max_chord), z_limit_(z_limit) {}
+
+  /// True when curve @p tag (read already) stands for a curve that its polyline only
+  /// approximates: a curved gmsh curve sampled here, or the mesh of a discrete curve.
+  [[nodiscard]] bool is_sampled(int tag) const { return sampled_.count(tag) > 0; }
+  /// The curves of the outline of geometric surface @p tag (read already).
+  [[nodiscard]] const std::vector<int>& outline(int tag) { return outlines_[tag]; }
 
   /// The polylines of curve @p tag (one, except for a discrete curve whose mesh is in
   /// pieces), in the curve's parametric direction, computed once per curve.
@@ -482,6 +490,8 @@ public:
       polylines = discrete_curve(tag, context);
     else
       polylines.push_back(parametric_curve(tag, type, context));
+    if (type != "Line")
+      sampled_.insert(tag);
     std::vector<std::vector<Point2>> result;
     for (const std::vector<Point3>& polyline : polylines) {
       std::vector<Point2>& points = result.emplace_back();
@@ -624,10 +634,12 @@ private:
         double deviation = 0.0;
         for (std::size_t k = 0; k < 3; ++k)
           deviation = std::max(deviation, distance_to_segment(values[3 * p + k], a, b));
-        if (deviation <= tolerance_)
+        const bool too_long = max_chord_ > 0.0 && (b - a).norm() > max_chord_;
+        if (deviation <= tolerance_ && !too_long)
           continue;
         if (piece.depth >= max_subdivision_depth) {
-          unresolved = std::max(unresolved, deviation);
+          if (deviation > tolerance_)
+            unresolved = std::max(unresolved, deviation);
           continue;
         }
         const double middle = inner[3 * p + 1];
@@ -690,6 +702,7 @@ private:
       const int curve_tag = std::abs(dim_tag.second);
       if (count[curve_tag] != 1)
         continue;
+      outlines_[tag].push_back(curve_tag);
       for (const std::vector<Point2>& polyline : curve(curve_tag, context)) {
         std::vector<Point2>& piece = pieces.emplace_back(polyline);
         if (dim_tag.second < 0)
@@ -793,8 +806,11 @@ private:
 
   std::string file_;
   double tolerance_;
+  double max_chord_;
   double z_limit_;
   std::map<int, std::vector<std::vector<Point2>>> curves_;
+  std::set<int> sampled_;
+  std::map<int, std::vector<int>> outlines_;
   NodeTable nodes_;
 };
 
@@ -833,6 +849,116 @@ double surfaces_diagonal(const std::vector<PhysicalGroup>& groups) {
   throw InputError(message);
 }
 
+// ----------------------------------------------------------------------------------------
+// Curves coarser than the cover mesh
+
+/// A segment as its two end points in a fixed order, to find the same segment elsewhere.
+std::array<double, 4> segment_key(const Point2& a, const Point2& b) {
+  const bool forward = std::make_pair(a.x(), a.y()) < std::make_pair(b.x(), b.y());
+  const Point2& p = forward ? a : b;
+  const Point2& q = forward ? b : a;
+  return {p.x(), p.y(), q.x(), q.y()};
+}
+
+/// The coarse segments of @p polyline (closed when its ends meet) not in @p skip.
+void add_coarse_segments(std::vector<CoarseSegment>& found,
+                         std::vector<Point2> polyline,
+                         double cover_size,
+                         const std::set<std::array<double, 4>>& skip = {}) {
+  const bool closed = polyline.size() > 2 && polyline.front() == polyline.back();
+  if (closed)
+    polyline.pop_back();
+  for (const CoarseSegment& segment : coarse_segments(polyline, closed, cover_size)) {
+    if (skip.count(segment_key(segment.a, segment.b)) == 0)
+      found.push_back(segment);
+  }
+}
+
+/// The warning for the coarse segments @p found of @p what (a Physical Curve, or the outline
+/// of a Physical Surface): how coarse, where, and what to do.
+std::string coarse_curve_warning(const std::string& what,
+                                 const std::vector<CoarseSegment>& found,
+                                 double cover_size,
+                                 bool from_mesh) {
+  const CoarseSegment& longest = *std::max_element(
+      found.begin(), found.end(), [](const auto& a, const auto& b) { return a.length < b.length; });
+  // A circle through the longest chord: chords of the cover size deviate by this much.
+  const double tolerance =
+      longest.deviation * cover_size * cover_size / (longest.length * longest.length);
+  const std::string h = number_text(cover_size);
+  return what + " is coarser than the cover mesh: " + std::to_string(found.size()) +
+         (found.size() == 1 ? " segment" : " segments") +
+         " where it bends are longer than [cover_mesh] size = " + h + " m, the longest " +
+         number_text(longest.length, 3) + " m near " +
+         point_text(0.5 * (longest.a + longest.b), 6) + ", about " +
+         number_text(longest.deviation, 2) +
+         " m off the curve it stands for, and the covers follow these chords; " +
+         (from_mesh ? "mesh the curve finer in gmsh (a mesh size of at most " + h +
+                          " m along it, e.g. gmsh -2 -clmax " + h +
+                          "), or give the .geo as geometry: nmm samples its curves for the "
+                          "cover mesh"
+                    : "lower [cover_mesh] curve_tolerance to at most " + number_text(tolerance, 2) +
+                          " m, or remove it (the automatic tolerance follows the cover size)") +
+         " (a polygon meant as drawn may stay)";
+}
+
+/// One warning per Physical Curve, and per Physical Surface for its outline curves that no
+/// Physical Curve names, whose sampled or meshed curves are coarser than the cover mesh.
+std::vector<std::string> coarse_curve_warnings(const std::string& file,
+                                               ModelReader& reader,
+                                               const PhysicalMesh& physical,
+                                               const std::vector<PhysicalGroup>& surface_groups,
+                                               const std::vector<PhysicalGroup>& curve_groups,
+                                               double cover_size) {
+  const bool from_mesh = lower(std::filesystem::path(file).extension().string()) == ".msh";
+  std::vector<std::string> warnings;
+  std::set<int> named_curves;
+  std::set<std::array<double, 4>> named_segments;
+  for (std::size_t g = 0; g < curve_groups.size(); ++g) {
+    std::vector<CoarseSegment> found;
+    for (const int tag : curve_groups[g].entities) {
+      named_curves.insert(tag);
+      if (!reader.is_sampled(tag))
+        continue;
+      for (const std::vector<Point2>& polyline : reader.curve(tag, curve_groups[g].name)) {
+        for (std::size_t i = 0; i + 1 < polyline.size(); ++i)
+          named_segments.insert(segment_key(polyline[i], polyline[i + 1]));
+        add_coarse_segments(found, polyline, cover_size);
+      }
+    }
+    if (!found.empty())
+      warnings.push_back(coarse_curve_warning("Physical Curve \"" + curve_groups[g].name + "\"",
+                                              found, cover_size, from_mesh));
+  }
+  for (std::size_t g = 0; g < surface_groups.size(); ++g) {
+    std::vector<CoarseSegment> found;
+    const MaterialRegion& region = physical.regions[g];
+    for (std::size_t k = 0; k < surface_groups[g].entities.size(); ++k) {
+      const int tag = surface_groups[g].entities[k];
+      std::string type;
+      gmsh::model::getType(2, tag, type);
+      if (type == "Discrete surface") {
+        // A meshed surface's outline is its elements' boundary: every segment a mesh edge.
+        const Polygon& polygon = region.polygons[k];
+        add_coarse_segments(found, polygon.outer, cover_size, named_segments);
+        for (const Loop& hole : polygon.holes)
+          add_coarse_segments(found, hole, cover_size, named_segments);
+        continue;
+      }
+      for (const int curve : reader.outline(tag)) {
+        if (named_curves.count(curve) > 0 || !reader.is_sampled(curve))
+          continue;
+        for (const std::vector<Point2>& polyline : reader.curve(curve, region.name))
+          add_coarse_segments(found, polyline, cover_size);
+      }
+    }
+    if (!found.empty())
+      warnings.push_back(coarse_curve_warning(
+          "the outline of Physical Surface \"" + region.name + "\"", found, cover_size, from_mesh));
+  }
+  return warnings;
+}
+
 PhysicalMesh read_open_model(const std::string& file, const GeometryReadOptions& options) {
   const std::vector<PhysicalGroup> surface_groups = physical_groups(2, "surface");
   if (surface_groups.empty())
@@ -846,11 +972,12 @@ PhysicalMesh read_open_model(const std::string& file, const GeometryReadOptions&
     }
   }
   const double diagonal = surfaces_diagonal(surface_groups);
+  const bool automatic = !(options.curve_tolerance > 0.0);
   const double tolerance =
-      options.curve_tolerance > 0.0 ? options.curve_tolerance : 1.0e-3 * diagonal;
+      automatic ? automatic_curve_tolerance(diagonal, options.cover_size) : options.curve_tolerance;
   // Coordinates written with z = 0 come back as exact zeros; allow only rounding noise.
   const double z_limit = 1.0e-9 * std::max(diagonal, 1.0);
-  ModelReader reader(file, tolerance, z_limit);
+  ModelReader reader(file, tolerance, automatic ? options.cover_size : 0.0, z_limit);
 
   PhysicalMesh physical;
   physical.source = file;
@@ -860,7 +987,8 @@ PhysicalMesh read_open_model(const std::string& file, const GeometryReadOptions&
     for (const int tag : group.entities)
       region.polygons.push_back(reader.surface(tag, group.name));
   }
-  for (const PhysicalGroup& group : physical_groups(1, "curve")) {
+  const std::vector<PhysicalGroup> curve_groups = physical_groups(1, "curve");
+  for (const PhysicalGroup& group : curve_groups) {
     NamedCurve& named = physical.curves.emplace_back();
     named.name = group.name;
     const std::string context = "Physical Curve \"" + group.name + "\"";
@@ -877,6 +1005,9 @@ PhysicalMesh read_open_model(const std::string& file, const GeometryReadOptions&
       named.points.push_back(reader.point(tag, context));
   }
   validate_physical_mesh(physical);
+  if (options.cover_size > 0.0)
+    physical.warnings = coarse_curve_warnings(file, reader, physical, surface_groups, curve_groups,
+                                              options.cover_size);
   return physical;
 }
 
@@ -884,7 +1015,8 @@ void check_tolerance(const std::string& file, const GeometryReadOptions& options
   if (!(options.curve_tolerance >= 0.0) || !std::isfinite(options.curve_tolerance)) {
     throw InputError(file +
                      ": the curve tolerance must be a finite length >= 0 (0 = automatic: "
-                     "1e-3 of the material's bounding-box diagonal), got " +
+                     "1e-2 of the cover size, or 1e-3 of the material's bounding-box "
+                     "diagonal when that is finer), got " +
                      number_text(options.curve_tolerance, 10));
   }
 }
@@ -945,14 +1077,83 @@ MathMesh collect_triangles(const std::string& file, const std::vector<int>& surf
   throw InputError(message.str());
 }
 
-MathMesh
-triangulate_physical_mesh(const std::string& file, const PhysicalMesh& physical, double size) {
+/// The size field of a graded math mesh (make_gmsh_math_mesh(), `sizes_from_geometry`): the
+/// .geo's own model meshed as the file asks, with Mesh.MeshSizeMax at most @p size, as gmsh
+/// list data "ST" (per triangle x1 x2 x3 y1 y2 y3 z1 z2 z3 and the sizes at its corners); the
+/// size at a node is the mean length of its mesh edges, at most @p size.
+std::vector<double>
+geometry_size_field(const std::filesystem::path& file, double size, double max_triangles) {
+  const std::string name = file.string();
+  // gmsh's default, so that the file's own Mesh.MeshSizeMax (if any) is the one read back.
+  gmsh::option::setNumber("Mesh.MeshSizeMax", 1e22);
+  open_model(file, GmshFileKind::geo);
+  MathMesh own;
+  run_gmsh(name, "mesh the geometry with its own mesh sizes", [&] {
+    double file_max = 0.0;
+    gmsh::option::getNumber("Mesh.MeshSizeMax", file_max);
+    gmsh::option::setNumber("Mesh.MeshSizeMax", std::min(file_max, size));
+    gmsh::model::mesh::generate(2);
+    const std::set<int> surfaces = entity_tags(2);
+    own = collect_triangles(name, std::vector<int>(surfaces.begin(), surfaces.end()));
+  });
+  if (static_cast<double>(own.n_triangles()) > max_triangles) {
+    throw InputError(
+        name + ": the .geo's own mesh sizes ([cover_mesh] geometry_sizes = true) make " +
+        std::to_string(own.n_triangles()) +
+        " triangles, more than [cover_mesh] max_triangles = " + number_text(max_triangles, 10) +
+        "; give its points and Fields larger sizes (in metres), or raise "
+        "max_triangles if this is intended");
+  }
+  std::vector<double> length_sum(own.nodes.size(), 0.0);
+  std::vector<int> edges(own.nodes.size(), 0);
+  std::set<std::pair<int, int>> unique_edges;
+  for (const auto& t : own.triangles)
+    for (std::size_t i = 0; i < 3; ++i)
+      unique_edges.insert(std::minmax(t[i], t[(i + 1) % 3]));
+  for (const auto& [first, second] : unique_edges) {
+    const auto a = static_cast<std::size_t>(first);
+    const auto b = static_cast<std::size_t>(second);
+    const double length = (own.nodes[a] - own.nodes[b]).norm();
+    length_sum[a] += length;
+    length_sum[b] += length;
+    ++edges[a];
+    ++edges[b];
+  }
+  std::vector<double> data;
+  data.reserve(12 * own.triangles.size());
+  for (const auto& t : own.triangles) {
+    for (const int n : t)
+      data.push_back(own.nodes[static_cast<std::size_t>(n)].x());
+    for (const int n : t)
+      data.push_back(own.nodes[static_cast<std::size_t>(n)].y());
+    data.insert(data.end(), 3, 0.0);
+    for (const int n : t) {
+      const auto i = static_cast<std::size_t>(n);
+      data.push_back(std::min(size, length_sum[i] / edges[i]));
+    }
+  }
+  return data;
+}
+
+/// gmsh's triangulation of the polygons of @p physical, edges at most @p size, smaller where
+/// the list data @p size_field (geometry_size_field(); empty: none) asks.
+MathMesh triangulate_physical_mesh(const std::string& file,
+                                   const PhysicalMesh& physical,
+                                   double size,
+                                   const std::vector<double>& size_field) {
   MathMesh mesh;
   run_gmsh(file, "triangulate the material", [&] {
     gmsh::clear();
     gmsh::model::add("nmm_math_mesh");
-    // Uniform size: the .geo's own sizes and fields refer to entities that are not in this
-    // model; the case file's size is the only one that counts.
+    // The .geo's own sizes and fields refer to entities that are not in this model: the
+    // case file's size counts, and the .geo's sizes only through size_field.
+    if (!size_field.empty()) {
+      const int view = gmsh::view::add("nmm_geometry_sizes");
+      gmsh::view::addListData(view, "ST", static_cast<int>(size_field.size() / 12), size_field);
+      const int field = gmsh::model::mesh::field::add("PostView");
+      gmsh::model::mesh::field::setNumber(field, "ViewTag", view);
+      gmsh::model::mesh::field::setAsBackgroundMesh(field);
+    }
     gmsh::option::setNumber("Geometry.AutoCoherence", 0);
     gmsh::option::setNumber("Mesh.MeshSizeMax", size);
     gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
@@ -1062,6 +1263,13 @@ PhysicalMesh read_physical_mesh(const std::filesystem::path& file,
   const std::string name = file.string();
   check_tolerance(name, options);
   const GmshFileKind kind = check_geometry_file(file);
+  if (kind == GmshFileKind::msh && options.curve_tolerance > 0.0) {
+    throw InputError(
+        name + ": [cover_mesh] curve_tolerance = " + number_text(options.curve_tolerance, 10) +
+        " m cannot apply to a .msh: its curves are its mesh's line elements, with "
+        "no curve to sample again; remove curve_tolerance (the mesh's curves are "
+        "used as they are), or give the .geo as geometry to sample its curves");
+  }
   std::optional<GmshSession> own_session;
   if (!GmshSession::is_alive())
     own_session.emplace();
@@ -1126,7 +1334,8 @@ MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
 MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
                              const PhysicalMesh& physical,
                              double size,
-                             double max_triangles) {
+                             double max_triangles,
+                             bool sizes_from_geometry) {
   const std::string name = file.string();
   check_math_mesh_size(name, size, max_triangles);
   if (check_geometry_file(file) == GmshFileKind::msh)
@@ -1140,7 +1349,9 @@ MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
   std::optional<GmshSession> own_session;
   if (!GmshSession::is_alive())
     own_session.emplace();
-  MathMesh mesh = triangulate_physical_mesh(name, physical, size);
+  const std::vector<double> size_field =
+      sizes_from_geometry ? geometry_size_field(file, size, max_triangles) : std::vector<double>();
+  MathMesh mesh = triangulate_physical_mesh(name, physical, size, size_field);
   if (static_cast<double>(mesh.n_triangles()) > max_triangles)
     throw_too_many_triangles(name, size, mesh.n_triangles(), area, max_triangles, "");
   return mesh;

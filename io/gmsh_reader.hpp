@@ -45,10 +45,18 @@ private:
 /// Tuning for read_physical_mesh().
 struct GeometryReadOptions {
   /// Largest distance (m) allowed between a curved gmsh curve and the polyline that
-  /// replaces it (the chord deviation). 0 means automatic: 1e-3 of the diagonal of the
-  /// bounding box of all Physical Surfaces. Straight lines are never subdivided, and
-  /// curves read from a mesh (.msh) use their mesh nodes whatever this value.
+  /// replaces it (the chord deviation). 0 means automatic: automatic_curve_tolerance() of
+  /// the diagonal of the bounding box of all Physical Surfaces and `cover_size` (1e-2 of the
+  /// cover size, or 1e-3 of the diagonal when that is finer), with chords no longer than
+  /// `cover_size`. Straight lines are never subdivided. Curves read from a mesh (.msh) are
+  /// its line elements: there is no curve to sample, so a value > 0 is refused for a .msh.
   double curve_tolerance = 0.0;
+  /// Edge length (m) of the cover mesh's triangles; 0: not known (no chord length bound, no
+  /// check). When > 0, every curve that nmm samples (a curved curve of a .geo) or that comes
+  /// from a mesh (.msh) and has segments coarser than this (coarse_segments()) is named in
+  /// PhysicalMesh::warnings (without the file name, which is PhysicalMesh::source), with
+  /// what to do.
+  double cover_size = 0.0;
   /// Longest wall time (s) reading a `.geo` may take; 0: no limit. With a time or memory
   /// limit, a `.geo` is read first in a child process (fork) that is stopped at the limit,
   /// so that a file that loops forever (an endless `For`, a recursive `Macro`) or grows
@@ -85,7 +93,8 @@ struct GeometryReadOptions {
 /// clockwise); `source` is @p file as given. The geometry must lie in the plane z = 0.
 ///
 /// @throws InputError naming the file and, where it applies, the line (gmsh's own message
-///         for .geo syntax errors) or the physical group, when: reading a .geo exceeds
+///         for .geo syntax errors) or the physical group, when: a curve tolerance > 0 is
+///         given for a .msh (naming `[cover_mesh] curve_tolerance`); reading a .geo exceeds
 ///         GeometryReadOptions::time_limit or memory_limit; the file is missing,
 ///         unreadable or not .geo/.msh; gmsh reports an error; there is no Physical Surface;
 ///         a surface's boundary does not close; a curve cannot be sampled within the
@@ -103,8 +112,8 @@ struct GeometryReadOptions {
 /// boundaries and to the curves shared between surfaces. Curves that are not surface
 /// boundaries (joints) are not embedded. The element size is uniform: Mesh.MeshSizeMax =
 /// @p size, no minimum, size factor 1; the mesh sizes, fields and mesh options of the .geo
-/// are ignored (they refer to the original entities). Near densely sampled curves the
-/// triangles are smaller than @p size.
+/// are ignored (they refer to the original entities; the overload below can grade the mesh
+/// by them). Near densely sampled curves the triangles are smaller than @p size.
 ///
 /// For a `.msh` file, the file's own 2D elements of the Physical Surfaces are used (quads
 /// are split into two triangles, high-order nodes dropped); @p size is then only checked.
@@ -121,11 +130,22 @@ struct GeometryReadOptions {
                                            const GeometryReadOptions& options = {});
 
 /// As above, for a geometry whose physical mesh @p physical was read already
-/// (read_physical_mesh() of the same file): a `.geo` is not read again, its material is
-/// triangulated from @p physical; a `.msh` is read for its own elements.
+/// (read_physical_mesh() of the same file): a `.geo` is triangulated from @p physical; a
+/// `.msh` is read for its own elements.
+///
+/// With @p sizes_from_geometry (`[cover_mesh] geometry_sizes`) a `.geo`'s own mesh sizes
+/// grade the triangles: gmsh meshes the file's model as the file asks (characteristic
+/// lengths of its points, its Fields and Background Field, its Mesh.MeshSize* options),
+/// with Mesh.MeshSizeMax at most @p size; the local edge length of that mesh (at each node
+/// the mean length of its edges, at most @p size) is then the background size field of the
+/// triangulation of @p physical. @p size stays the largest edge. Without it (and for a
+/// `.msh`, whose elements are used as they are) the .geo is not read again.
+/// @throws InputError also when the file's own mesh has more triangles than
+///         @p max_triangles (its sizes in mm?), naming the file and what to change.
 [[nodiscard]] MathMesh make_gmsh_math_mesh(const std::filesystem::path& file,
                                            const PhysicalMesh& physical,
                                            double size,
-                                           double max_triangles = default_max_math_triangles);
+                                           double max_triangles = default_max_math_triangles,
+                                           bool sizes_from_geometry = false);
 
 } // namespace nmm

@@ -46,6 +46,9 @@ struct PhysicalMesh {
   std::vector<MaterialRegion> regions;
   std::vector<NamedCurve> curves;
   std::vector<NamedPoint> points;
+  /// Remarks of the reader that do not stop a run, each saying what to do (a curve sampled
+  /// coarser than the cover mesh, for instance).
+  std::vector<std::string> warnings;
 
   [[nodiscard]] int n_regions() const noexcept { return static_cast<int>(regions.size()); }
 

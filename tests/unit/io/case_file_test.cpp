@@ -326,9 +326,9 @@ TEST(CaseFile, WaterLevelIsAHydrostaticPressure) {
 
 TEST(CaseFile, EveryExtensionKeyIsRead) {
   const std::string text =
-      "geometry = \"dam.msh\"\ntitle = \"Dam on a jointed foundation\"\n"
+      "geometry = \"dam.geo\"\ntitle = \"Dam on a jointed foundation\"\n"
       "[cover_mesh]\nkind = \"gmsh\"\nsize = 2.0\norder = 1\nmax_triangles = 100000\n"
-      "min_cover_area_ratio = 0.0\ncurve_tolerance = 0.05\n"
+      "min_cover_area_ratio = 0.0\ncurve_tolerance = 0.05\ngeometry_sizes = true\n"
       "[materials.concrete]\nmodel = \"vem\"\ndensity = 2400\nyoung = 3e10\npoisson = 0.2\n"
       "plane = \"stress\"\nthickness = 0.3\ninitial_angular_velocity = 0.1\n"
       "exact_rotation = true\n"
@@ -345,6 +345,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_EQ(spec.cover_mesh.max_triangles, 100000);
   EXPECT_DOUBLE_EQ(spec.cover_mesh.min_cover_area_ratio, 0.0);
   EXPECT_DOUBLE_EQ(spec.cover_mesh.curve_tolerance, 0.05);
+  EXPECT_TRUE(spec.cover_mesh.geometry_sizes);
   const MaterialSpec& concrete = spec.materials.at(0);
   EXPECT_EQ(concrete.model, MaterialModel::vem);
   EXPECT_EQ(concrete.plane, PlaneCondition::stress);
