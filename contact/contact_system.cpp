@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: MIT
+// contact/contact_system.cpp — ContactSystem: the contacts of a step from the detection's
+// candidates, the open-close mode decisions, transfer of closed contacts to the next step.
 #include "contact/contact_system.hpp"
 
+#include "contact/detail/contact_support.hpp"
 #include "contact/key_set.hpp"
 #include "mesh/error.hpp"
 #include "mesh/parallel.hpp"
@@ -14,165 +17,17 @@
 
 namespace nmm {
 
-namespace {
-
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
-
-/// perp(w) = (w.y, -w.x): cross(u, w) = u . perp(w).
-Point2 perp(const Point2& w) { return {w.y(), -w.x()}; }
-
-JointStrength weaker(const JointStrength& a, const JointStrength& b) {
-  return {std::min(a.friction_angle, b.friction_angle), std::min(a.cohesion, b.cohesion),
-          std::min(a.tensile_strength, b.tensile_strength)};
-}
-
-bool closed(ContactMode m) { return m != ContactMode::open; }
-
-/// m += (s h) h^T, entry (a, b) as (s h(a)) h(b): what Eigen's outer product computes, without
-/// its temporary for s h (an allocation for every spring in every open-close iteration); only
-/// the upper triangle (a <= b) when @p upper.
-void add_outer(Eigen::MatrixXd& m, double s, const Eigen::VectorXd& h, bool upper) {
-  const Eigen::Index n = h.size();
-  for (Eigen::Index b = 0; b < n; ++b) {
-    const double hb = h(b);
-    double* column = m.col(b).data();
-    const Eigen::Index rows = upper ? b + 1 : n;
-    for (Eigen::Index a = 0; a < rows; ++a)
-      column[a] += (s * h(a)) * hb;
-  }
-}
-
-// Gauss-Legendre points on [0, 1]: two for order-0 covers (the squared gap along an edge is
-// of degree 2), three for order 1 (degree 4).
-constexpr std::array<double, 2> xi2{0.21132486540518712, 0.78867513459481288};
-constexpr std::array<double, 2> w2{0.5, 0.5};
-constexpr std::array<double, 3> xi3{0.11270166537925831, 0.5, 0.88729833462074169};
-constexpr std::array<double, 3> w3{5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-
-/// A part [from, to] of an overlap, or none.
-struct Part {
-  bool found = false;
-  double from = 0.0;
-  double to = 0.0;
-};
-
-/// The gap along an edge-to-edge overlap [lo, hi] (slave parameters): linear from its values
-/// at the ends (order-0 covers), or quadratic through the ends and the middle (order 1).
-class GapProfile {
-public:
-  GapProfile(double lo, double hi, std::span<const double> g) : lo_(lo), hi_(hi), c_(g.front()) {
-    b_ = g.back() - g.front();
-    if (g.size() == 3) {
-      b_ = 4.0 * g[1] - 3.0 * g[0] - g[2];
-      a_ = 2.0 * g[2] + 2.0 * g[0] - 4.0 * g[1];
-    }
-  }
-
-  [[nodiscard]] double at(double u) const {
-    const double s = hi_ > lo_ ? (u - lo_) / (hi_ - lo_) : 0.0;
-    return (a_ * s + b_) * s + c_;
-  }
-
-  /// The part where the gap is negative (for a quadratic, the hull of its negative parts).
-  /// Parts shorter than 1e-6 of the overlap count as none.
-  [[nodiscard]] Part negative() const {
-    // The ends and the roots in [0, 1], sorted.
-    std::array<double, 4> cuts{0.0, 1.0};
-    std::size_t n = 2;
-    auto cut = [&](double s) {
-      if (s >= 0.0 && s <= 1.0)
-        cuts[n++] = s;
-    };
-    if (std::abs(a_) > 1e-14 * (std::abs(b_) + std::abs(c_))) {
-      const double disc = b_ * b_ - 4.0 * a_ * c_;
-      if (disc > 0.0) {
-        const double q = -0.5 * (b_ + std::copysign(std::sqrt(disc), b_)); // stable roots
-        cut(q / a_);
-        if (q != 0.0)
-          cut(c_ / q);
-      }
-    } else if (b_ != 0.0) {
-      cut(-c_ / b_);
-    }
-    // Insertion sort of at most four values (std::sort's inlined introsort on a prefix of the
-    // array trips GCC 12's -Warray-bounds: it cannot see n <= 4).
-    for (std::size_t k = 1; k < n; ++k)
-      for (std::size_t j = k; j > 0 && cuts[j] < cuts[j - 1]; --j)
-        std::swap(cuts[j], cuts[j - 1]);
-    double first = 2.0;
-    double last = -1.0;
-    for (std::size_t k = 0; k + 1 < n; ++k) {
-      const double mid = 0.5 * (cuts[k] + cuts[k + 1]);
-      if (cuts[k + 1] > cuts[k] && (a_ * mid + b_) * mid + c_ < 0.0) {
-        first = std::min(first, cuts[k]);
-        last = std::max(last, cuts[k + 1]);
-      }
-    }
-    if (last - first < 1e-6)
-      return {};
-    return {true, lo_ + (hi_ - lo_) * first, lo_ + (hi_ - lo_) * last};
-  }
-
-  /// Integral of |gap| du over [from, to] (Simpson's rule on a quadratic: exact where the
-  /// gap keeps its sign).
-  [[nodiscard]] double magnitude(double from, double to) const {
-    if (to <= from)
-      return 0.0;
-    return (to - from) / 6.0 *
-           (std::abs(at(from)) + 4.0 * std::abs(at(0.5 * (from + to))) + std::abs(at(to)));
-  }
-
-  /// Integral of |gap| du over the parts of [f1, t1] outside [f2, t2].
-  [[nodiscard]] double outside(double f1, double t1, double f2, double t2) const {
-    return magnitude(f1, std::min(t1, f2)) + magnitude(std::max(f1, t2), t1);
-  }
-
-private:
-  double lo_;
-  double hi_;
-  double a_ = 0.0;
-  double b_ = 0.0;
-  double c_;
-};
-
-/// Lagrange interpolation of the (u, value) pairs at u (constant for one pair).
-double interpolate(const std::vector<std::pair<double, double>>& values, double u) {
-  if (values.size() == 1)
-    return values.front().second;
-  double result = 0.0;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    double basis = 1.0;
-    for (std::size_t j = 0; j < values.size(); ++j) {
-      if (j == i)
-        continue;
-      const double span = values[i].first - values[j].first;
-      if (std::abs(span) < 1e-12) // points on a vanishing part: take their mean
-        return values.front().second;
-      basis *= (u - values[j].first) / span;
-    }
-    result += basis * values[i].second;
-  }
-  return result;
-}
-
-/// The shear offset of a locked edge-to-edge pair at slave parameter u, from the offsets
-/// (anchor minus the projection of the slave point on the master, in master parameters) of
-/// its points: interpolated between them, and the nearest one's beyond them. The springs of
-/// a pair move when the part that presses grows or shrinks; extrapolating anchors (or a
-/// polynomial of the offsets) from a short part to a long one multiplies the rounding-size
-/// differences between the points by the ratio of the lengths (millimetres of shear that
-/// never happened, a pressed part growing from 1e-5 m to 1e-3 m; examples/10).
-double offset_at(const std::vector<std::pair<double, double>>& offsets, double u) {
-  double lo = offsets.front().first;
-  double hi = lo;
-  for (const auto& [v, offset] : offsets) {
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  return interpolate(offsets, std::clamp(u, lo, hi));
-}
-
-} // namespace
+using detail::at;
+using detail::closed;
+using detail::GapProfile;
+using detail::offset_at;
+using detail::Part;
+using detail::perp;
+using detail::w2;
+using detail::w3;
+using detail::weaker;
+using detail::xi2;
+using detail::xi3;
 
 ContactSystem::ContactSystem(ContactOptions options,
                              std::vector<std::vector<JointStrength>> strength_of_edge,
@@ -193,15 +48,6 @@ bool ContactSystem::can_touch(const Model& model) {
     }
   }
   return false;
-}
-
-double ContactSystem::projection(int master, const Point2& x) const {
-  const Point2& a = boundary_.position[at(master)];
-  const Point2 edge = boundary_.position[at(boundary_.next[at(master)])] - a;
-  // Not clamped to the edge: a slave that has moved past the end of its master edge within
-  // the step keeps its true offset (a clamped anchor would load the shear spring with a
-  // displacement that never happened).
-  return (x - a).dot(edge) / edge.squaredNorm();
 }
 
 template <class AnchorOf>
@@ -633,13 +479,6 @@ void ContactSystem::back_to_kept(Eigen::VectorXd& raw) {
   has_converged_ = false;
 }
 
-const ElementShape& ContactSystem::shape(int element) const {
-  NMM_ASSERT(element >= 0 && at(element) < shape_of_element_.size() &&
-                 shape_of_element_[at(element)] >= 0,
-             "no shape built for this element in begin_step()");
-  return shapes_[at(shape_of_element_[at(element)])];
-}
-
 void ContactSystem::set_dynamic(bool dynamic) { dynamic_ = dynamic; }
 
 void ContactSystem::set_hold_shear(bool hold) {
@@ -652,234 +491,6 @@ void ContactSystem::set_hold_shear(bool hold) {
       p.anchor = projection(p.master, p.slave);
     }
   }
-}
-
-void ContactSystem::kinematics(const Model& model,
-                               const ContactPoint& p,
-                               Kinematics& k,
-                               KinematicsWork& work) const {
-  const int slave_edge = p.slave_edge;
-  const int master = p.master;
-  const Point2& slave = p.slave;
-  const int slave_element = edge_element_[at(slave_edge)];
-  const int master_element = edge_element_[at(master)];
-  const std::span<const int> slave_dofs = model.element_dofs(slave_element);
-  const std::span<const int> master_dofs = model.element_dofs(master_element);
-  const ElementShape& slave_shape = shape(slave_element);
-  const ElementShape& master_shape = shape(master_element);
-  const Point2& slave_a = boundary_.position[at(slave_edge)];
-  const Point2& slave_b = boundary_.position[at(boundary_.next[at(slave_edge)])];
-  const Point2& a = boundary_.position[at(master)];
-  const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
-  const double l = (b - a).norm();
-  const Point2 tangent = (b - a) / l;
-  const Point2 normal = perp(b - a) / l;
-  // The terms T_element(x)^T c of the gap (hn) and of the shear (hs), on the slave's unknowns
-  // (x on the slave edge's line) or the master's (x on the master edge's line).
-  // Normal gap (material on the left of a -> b; positive on the void side):
-  // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
-  // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
-  k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset - p.shift;
-  struct Term {
-    Point2 x;
-    Point2 c;
-  };
-  std::array<Term, 5> master_normal{};
-  std::size_t n_master_normal = 0;
-  master_normal[n_master_normal++] = {a, perp(slave - b) / l};
-  master_normal[n_master_normal++] = {b, Point2(-perp(slave - a) / l)};
-  if (model.order >= 1 && master_shape.nmm() != nullptr) {
-    // The master terms above move the foot of the slave point, A + t (B - A), with the
-    // straight line through the moved ends A and B: exact for a straight edge (order 0, DDA,
-    // VEM). An order-1 edge bends (its displacement is quadratic along it); the foot moves
-    // with the master's own field there: n . (T(foot) - (1 - t) T(A) - t T(B)) d less gap.
-    const double foot = (slave - a).dot(b - a) / (l * l);
-    master_normal[n_master_normal++] = {a + foot * (b - a), Point2(-normal)};
-    master_normal[n_master_normal++] = {a, (1.0 - foot) * normal};
-    master_normal[n_master_normal++] = {b, foot * normal};
-  }
-  // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
-  const Point2 anchor = a + p.anchor * (b - a);
-  k.s0 = (slave - anchor).dot(tangent);
-  const Term master_shear{anchor, Point2(-tangent)};
-  PointInterpolation& t = work.t;
-  std::vector<int>& columns = work.columns;
-  k.dofs.clear();
-  // The unknowns the point's terms involve, each at the position of its first use: the
-  // slave element's first (all of an NMM element's or a DDA block's, a VEM block's slave
-  // edge's two vertices), then the master's that the slave does not have. They depend on
-  // the point's edges only, not on where it sits along them: the step's sparsity pattern
-  // and plans are made with them at its start (point_dofs()).
-  //
-  // Two elements whose unknowns are apart (two blocks; NMM elements on either side of a
-  // joint, mostly): the master's follow the slave's, in the order of the columns of their
-  // interpolations, which are those of the edge for every point on its line. An element's
-  // own unknowns are distinct. The same sums in the same order as below (from a zero, as
-  // there), without looking up any unknown: the 70-block wall's kinematics take 0.11 ms a
-  // step instead of 0.19.
-  const auto [slave_min, slave_max] = std::ranges::minmax(slave_dofs);
-  const auto [master_min, master_max] = std::ranges::minmax(master_dofs);
-  if (slave_max < master_min || master_max < slave_min) {
-    slave_shape.interpolation_on_edge(slave, slave_a, slave_b, t, columns);
-    const auto ns = static_cast<Eigen::Index>(columns.size());
-    for (const int column : columns)
-      k.dofs.push_back(slave_dofs[at(column)]);
-    std::vector<int>& master_columns = work.master_columns;
-    // The columns of the master's interpolation, at the first master term's point.
-    master_shape.interpolation_on_edge(master_normal[0].x, a, b, work.t_master, master_columns);
-    const auto nm = static_cast<Eigen::Index>(master_columns.size());
-    for (const int column : master_columns)
-      k.dofs.push_back(master_dofs[at(column)]);
-    k.hn.resize(ns + nm);
-    k.hs.resize(ns + nm);
-    for (Eigen::Index j = 0; j < ns; ++j) {
-      k.hn(j) = 0.0 + (t(0, j) * normal.x() + t(1, j) * normal.y());
-      k.hs(j) = 0.0 + (t(0, j) * tangent.x() + t(1, j) * tangent.y());
-    }
-    auto add_master = [&](Eigen::Ref<Eigen::VectorXd> h, const Term& term, bool first) {
-      if (!first)
-        master_shape.interpolation_on_edge(term.x, a, b, work.t_master, columns);
-      NMM_ASSERT(first || columns == master_columns,
-                 "every point on an edge's line has the edge's columns");
-      const PointInterpolation& tm = work.t_master;
-      for (Eigen::Index j = 0; j < nm; ++j)
-        h(j) += tm(0, j) * term.c.x() + tm(1, j) * term.c.y();
-    };
-    k.hn.tail(nm).setZero();
-    k.hs.tail(nm).setZero();
-    for (std::size_t q = 0; q < n_master_normal; ++q)
-      add_master(k.hn.tail(nm), master_normal[q], q == 0);
-    add_master(k.hs.tail(nm), master_shear, false);
-    return;
-  }
-  // Otherwise each unknown is looked up where it is first used: local[c] for the slave's
-  // column c, local[slave size + c] for the master's (-1: not used yet).
-  const std::size_t bound = slave_dofs.size() + master_dofs.size();
-  std::vector<double>& hn = work.hn;
-  std::vector<double>& hs = work.hs;
-  hn.assign(bound, 0.0);
-  hs.assign(bound, 0.0);
-  std::vector<Eigen::Index>& local = work.local;
-  local.assign(bound, -1);
-  // Adds T_element(x)^T c to hn (or hs if @p shear), on the slave's unknowns or the master's.
-  auto add = [&](bool shear, bool on_master, const Term& term) {
-    if (on_master)
-      master_shape.interpolation_on_edge(term.x, a, b, t, columns);
-    else
-      slave_shape.interpolation_on_edge(term.x, slave_a, slave_b, t, columns);
-    const std::span<const int> dofs = on_master ? master_dofs : slave_dofs;
-    const std::size_t offset = on_master ? slave_dofs.size() : 0;
-    std::vector<double>& h = shear ? hs : hn;
-    for (std::size_t j = 0; j < columns.size(); ++j) {
-      const std::size_t column = at(columns[j]);
-      NMM_ASSERT(column < dofs.size(), "an element's interpolation has a column per unknown");
-      Eigen::Index& position = local[offset + column];
-      if (position < 0) { // an unknown the other element may have used already
-        const auto found = std::find(k.dofs.begin(), k.dofs.end(), dofs[column]);
-        position = found - k.dofs.begin();
-        if (found == k.dofs.end())
-          k.dofs.push_back(dofs[column]);
-      }
-      const auto col = static_cast<Eigen::Index>(j);
-      h[static_cast<std::size_t>(position)] += t(0, col) * term.c.x() + t(1, col) * term.c.y();
-    }
-  };
-  add(false, false, {slave, normal});
-  for (std::size_t q = 0; q < n_master_normal; ++q)
-    add(false, true, master_normal[q]);
-  add(true, false, {slave, tangent});
-  add(true, true, master_shear);
-  // Cut to the unknowns used (fewer than bound on a VEM block's edge, or where the elements
-  // share unknowns).
-  const auto n = static_cast<Eigen::Index>(k.dofs.size());
-  k.hn = Eigen::Map<const Eigen::VectorXd>(hn.data(), n);
-  k.hs = Eigen::Map<const Eigen::VectorXd>(hs.data(), n);
-}
-
-const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& model,
-                                                                  const ContactPoint& p,
-                                                                  std::size_t slot) const {
-  return cached_kinematics(model, p, slot, work_);
-}
-
-const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& model,
-                                                                  const ContactPoint& p,
-                                                                  std::size_t slot,
-                                                                  KinematicsWork& work) const {
-  NMM_ASSERT(slot < kinematics_cache_.size(), "a kinematics slot of this step");
-  CachedKinematics& c = kinematics_cache_[slot];
-  if (c.stamp != kinematics_stamp_ || c.slave_edge != p.slave_edge || c.master != p.master ||
-      c.slave != p.slave || c.anchor != p.anchor || c.offset != p.offset || c.shift != p.shift) {
-    kinematics(model, p, c.kinematics, work);
-    c.stamp = kinematics_stamp_;
-    c.slave_edge = p.slave_edge;
-    c.master = p.master;
-    c.slave = p.slave;
-    c.anchor = p.anchor;
-    c.offset = p.offset;
-    c.shift = p.shift;
-  }
-  return c.kinematics;
-}
-
-// Each slot is written by the one chunk its point or group is in, each chunk with its own
-// workspace: the kinematics are what the calls one by one compute, on any number of threads.
-// At 10,004 DDA blocks they are a tenth of a step.
-void ContactSystem::prepare_kinematics(const Model& model) const {
-  works_.resize(static_cast<std::size_t>(worker_threads()));
-  const std::size_t min_chunk = options_.parallel_min_chunk;
-  parallel_for(points_.size(), min_chunk, [&](std::size_t first, std::size_t last, int chunk) {
-    for (std::size_t i = first; i < last; ++i)
-      static_cast<void>(cached_kinematics(model, points_[i], i, works_[at(chunk)]));
-  });
-  parallel_for(groups_.size(), min_chunk, [&](std::size_t first, std::size_t last, int chunk) {
-    for (std::size_t k = first; k < last; ++k) {
-      const Group& g = groups_[k];
-      if (!g.edge)
-        continue;
-      const std::vector<std::pair<double, double>> shifts = shifts_of(g);
-      for (int sample = 0; sample < 3; ++sample) {
-        if (sample != 1 || gauss_ == 3)
-          static_cast<void>(sample_kinematics(model, g, sample, shifts, works_[at(chunk)]));
-      }
-    }
-  });
-}
-
-const ContactSystem::Kinematics&
-ContactSystem::sample_kinematics(const Model& model,
-                                 const Group& g,
-                                 int sample,
-                                 const std::vector<std::pair<double, double>>& shifts,
-                                 KinematicsWork& work) const {
-  const double u = sample == 0 ? g.lo : sample == 1 ? 0.5 * (g.lo + g.hi) : g.hi;
-  ContactPoint p = points_[at(g.first)];
-  const Point2& a = boundary_.position[at(p.slave_edge)];
-  const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
-  p.slave = a + u * (d - a);
-  p.anchor = 0.0; // the gap does not depend on it: one slot for the whole step
-  p.shift = shifts.empty() ? 0.0 : offset_at(shifts, u);
-  const auto group = static_cast<std::size_t>(&g - groups_.data());
-  return cached_kinematics(model, p, points_.size() + 3 * group + at(sample), work);
-}
-
-double ContactSystem::gap_at(const Model& model,
-                             const Group& g,
-                             int sample,
-                             const std::vector<std::pair<double, double>>& shifts,
-                             const Eigen::VectorXd& raw) const {
-  return sample_kinematics(model, g, sample, shifts, work_).gap(raw);
-}
-
-std::vector<std::pair<double, double>> ContactSystem::shifts_of(const Group& g) const {
-  const auto first = points_.begin() + g.first;
-  const auto last = first + g.count;
-  std::vector<std::pair<double, double>> shifts;
-  if (std::any_of(first, last, [](const ContactPoint& p) { return p.shift != 0.0; })) {
-    for (auto p = first; p != last; ++p)
-      shifts.emplace_back(p->u, p->shift);
-  }
-  return shifts;
 }
 
 bool ContactSystem::augment(Eigen::VectorXd& raw) {
@@ -923,90 +534,6 @@ bool ContactSystem::augment(Eigen::VectorXd& raw) {
     p.shift = p.bonded ? shift : std::max(0.0, shift);
   }
   return true;
-}
-
-std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
-  std::vector<int> dofs;
-  append_point_dofs(model, i, dofs);
-  return dofs;
-}
-
-void ContactSystem::append_point_dofs(const Model& model, int i, std::vector<int>& out) const {
-  const std::vector<int>& dofs = cached_kinematics(model, points_[at(i)], at(i)).dofs;
-  out.insert(out.end(), dofs.begin(), dofs.end());
-}
-
-bool ContactSystem::contribution(const Model& model,
-                                 int i,
-                                 Eigen::MatrixXd* stiffness,
-                                 Eigen::VectorXd& load,
-                                 bool upper) const {
-  const ContactPoint& p = points_[at(i)];
-  // One kinematics: its unknowns are point_dofs(i), in that order.
-  const Kinematics& k = cached_kinematics(model, p, at(i));
-  const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
-  if (stiffness != nullptr)
-    stiffness->setZero(n, n);
-  load.setZero(n);
-  if (p.mode == ContactMode::open)
-    return false;
-  const Eigen::VectorXd& hn = k.hn;
-  const Eigen::VectorXd& hs = k.hs;
-  // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
-  if (stiffness != nullptr)
-    add_outer(*stiffness, p.stiffness, hn, upper);
-  load -= p.stiffness * k.g0 * hn;
-  if (p.mode == ContactMode::lock) {
-    // Shear spring (eq. 3.25-3.26) anchored at P0.
-    if (stiffness != nullptr)
-      add_outer(*stiffness, p.stiffness, hs, upper);
-    load -= p.stiffness * k.s0 * hs;
-  } else if (friction_coupled(p)) {
-    return true; // its friction is in the solve: friction_coupling()
-  } else if (const double friction = friction_force(p); friction != 0.0) {
-    // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
-    // from the normal force of the last iteration so that the matrix stays symmetric. What
-    // follows the normal force is friction; a bond's cohesion alone is a constant load.
-    load -= static_cast<double>(p.slide_sign) * friction * hs;
-    return friction != bond_cohesion(p);
-  }
-  return false;
-}
-
-double ContactSystem::group_stiffness(const Group& g) const {
-  double sum = 0.0;
-  for (int q = 0; q < g.count; ++q)
-    sum += points_[at(g.first + q)].stiffness;
-  return sum;
-}
-
-std::vector<ContactSystem::FrictionCoupling>
-ContactSystem::friction_coupling(const Model& model) const {
-  std::vector<FrictionCoupling> coupling;
-  for (const Group& g : groups_) {
-    const ContactPoint& lead = points_[at(g.first)];
-    if (!friction_coupled(lead))
-      continue;
-    const double placed = group_stiffness(g);
-    FrictionCoupling f;
-    f.point = g.first;
-    f.coef = static_cast<double>(lead.slide_sign) * std::tan(lead.strength.friction_angle);
-    const std::vector<int>& dofs = cached_kinematics(model, lead, at(g.first)).dofs;
-    f.w.setZero(static_cast<Eigen::Index>(dofs.size()));
-    f.a.setZero(f.w.size());
-    // The friction of the pair, tan(phi) times the springs' resultant, shared among its points
-    // by stiffness as update_modes() shares the normal force.
-    for (int q = 0; q < g.count; ++q) {
-      const ContactPoint& p = points_[at(g.first + q)];
-      const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
-      NMM_ASSERT(k.dofs == dofs, "the points of a contact couple the same unknowns");
-      f.w += (placed > 0.0 ? p.stiffness / placed : 0.0) * k.hs;
-      f.a += p.stiffness * k.hn;
-      f.c0 += p.stiffness * k.g0;
-    }
-    coupling.push_back(std::move(f));
-  }
-  return coupling;
 }
 
 ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd& raw) {

@@ -455,6 +455,13 @@ private:
   /// a step), with the workspace @p work.
   void
   kinematics(const Model& model, const ContactPoint& p, Kinematics& k, KinematicsWork& work) const;
+  struct Term;
+  struct PointTerms;
+  /// The terms of kinematics() summed into @p k when the two elements' unknowns are apart
+  /// (each element's follow in the order of their interpolations' columns) ...
+  static void kinematics_apart(const PointTerms& terms, Kinematics& k, KinematicsWork& work);
+  /// ... and when they may share unknowns (each looked up where it is first used).
+  static void kinematics_shared(const PointTerms& terms, Kinematics& k, KinematicsWork& work);
   /// cached_kinematics() of slot @p slot with the workspace @p work.
   const Kinematics& cached_kinematics(const Model& model,
                                       const ContactPoint& p,
