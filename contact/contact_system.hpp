@@ -439,6 +439,29 @@ private:
   void carry(std::uint64_t key, Carried state, std::span<const std::pair<double, double>> anchors);
   /// Forgets every carried state (keeping the storage).
   void clear_carried();
+  /// A carried contact by one of its edges.
+  struct ByEdge {
+    int edge;
+    std::uint64_t key;
+    const Carried* state;
+  };
+  /// The carried contacts sorted by slave edge and by master edge, and for one edge by
+  /// decreasing key.
+  struct CarriedByEdge {
+    std::vector<ByEdge> slave;
+    std::vector<ByEdge> master;
+  };
+  /// CarriedByEdge of the carried contacts @p keep (their keys, increasing).
+  [[nodiscard]] CarriedByEdge carried_by_edge(const std::vector<std::uint64_t>& keep) const;
+  /// The carried state of the contact @p key of @p slave against @p master (an edge pair if
+  /// @p edge): its own, or one the contact takes over (Shi 3.3), or null; *identical tells
+  /// whether its anchors and offset refer to this pair.
+  [[nodiscard]] const Carried* carried_state(const CarriedByEdge& carried,
+                                             std::uint64_t key,
+                                             int slave,
+                                             int master,
+                                             bool edge,
+                                             bool* identical) const;
 
   /// Workspaces of kinematics(): where each unknown sits, the columns and the interpolation
   /// of one point, the terms before they are cut to the unknowns used.
