@@ -57,12 +57,12 @@ bool ContactSystem::contribution(const Model& model,
     load -= p.stiffness * k.s0 * hs;
   } else if (friction_coupled(p)) {
     return true; // its friction is in the solve: friction_coupling()
-  } else if (const double friction = friction_force(p); friction != 0.0) {
+  } else if (const double friction = law_->friction_force(p); friction != 0.0) {
     // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
     // from the normal force of the last iteration so that the matrix stays symmetric. What
     // follows the normal force is friction; a bond's cohesion alone is a constant load.
     load -= static_cast<double>(p.slide_sign) * friction * hs;
-    return friction != bond_cohesion(p);
+    return friction != law_->bond_cohesion(p);
   }
   return false;
 }
@@ -84,7 +84,7 @@ ContactSystem::friction_coupling(const Model& model) const {
     const double placed = group_stiffness(g);
     FrictionCoupling f;
     f.point = g.first;
-    f.coef = static_cast<double>(lead.slide_sign) * std::tan(lead.strength.friction_angle);
+    f.coef = static_cast<double>(lead.slide_sign) * law_->friction_coefficient(lead);
     const std::vector<int>& dofs = cached_kinematics(model, lead, at(g.first)).dofs;
     f.w.setZero(static_cast<Eigen::Index>(dofs.size()));
     f.a.setZero(f.w.size());

@@ -25,15 +25,14 @@ using detail::Part;
 using detail::perp;
 using detail::w2;
 using detail::w3;
-using detail::weaker;
 using detail::xi2;
 using detail::xi3;
 
 ContactSystem::ContactSystem(ContactOptions options,
                              std::vector<std::vector<JointStrength>> strength_of_edge,
                              std::vector<std::vector<bool>> bonded_edge)
-    : options_(options), strength_of_edge_(std::move(strength_of_edge)),
-      bonded_edge_(std::move(bonded_edge)) {
+    : options_(options), law_(std::make_shared<const MohrCoulombJoint>(std::move(strength_of_edge),
+                                                                       std::move(bonded_edge))) {
   NMM_ASSERT(options_.penalty > 0.0 && options_.spring_length > 0.0,
              "contact springs need stiffness");
 }
@@ -144,8 +143,8 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
     const BoundaryLoop& loop = model.loops[l];
     for (int k = 0; k < loop.n_vertices(); ++k) {
       edge_element_.push_back(loop.edges[at(k)].element);
-      edge_strength_.push_back(strength_of_edge_[l][at(k)]);
-      edge_bonded_.push_back(bonded_edge_[l][at(k)] ? 1 : 0);
+      edge_strength_.push_back(law_->surface(l, at(k)));
+      edge_bonded_.push_back(law_->is_bonded(l, at(k)) ? 1 : 0);
     }
   }
   DetectionOptions detection = options_.detection;
@@ -221,9 +220,10 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
                      : 0.5 * ((boundary_.position[at(boundary_.next[at(v)])] - p.slave).norm() +
                               (boundary_.position[at(boundary_.previous[at(v)])] - p.slave).norm());
       p.stiffness = options_.penalty;
-      p.strength =
-          weaker(weaker(edge_strength_[at(v)], edge_strength_[at(boundary_.previous[at(v)])]),
-                 edge_strength_[at(p.master)]);
+      p.strength = law_->contact_strength(
+          law_->contact_strength(edge_strength_[at(v)],
+                                 edge_strength_[at(boundary_.previous[at(v)])]),
+          edge_strength_[at(p.master)]);
       // A corner at the end of a bonded face belongs to that face's bond (it holds no length
       // of its own, so no strength either: its spring yields with friction alone).
       p.bonded = c.end_face >= 0
@@ -247,7 +247,8 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       const double u2 = (t_hi - g.t_first) / (g.t_next - g.t_first);
       g.lo = std::clamp(std::min(u1, u2), 0.0, 1.0);
       g.hi = std::clamp(std::max(u1, u2), 0.0, 1.0);
-      p.strength = weaker(edge_strength_[at(c.slave)], edge_strength_[at(c.master)]);
+      p.strength =
+          law_->contact_strength(edge_strength_[at(c.slave)], edge_strength_[at(c.master)]);
       p.bonded = edge_bonded_[at(c.slave)] != 0 && edge_bonded_[at(c.master)] != 0;
       g.count = gauss_;
       for (int q = 0; q < gauss_; ++q) {
@@ -429,8 +430,8 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       motion += p.stiffness * measure[at(q)].ds;
       gap += p.stiffness * measure[at(q)].gap;
       if (p.bonded) {
-        cohesion += p.strength.cohesion * p.length;
-        tension += p.strength.tensile_strength * p.length;
+        cohesion += law_->bond_cohesion(p);
+        tension += law_->bond_tension(p);
       }
     }
     ContactPoint& lead = points_[at(g.first)];
@@ -482,8 +483,8 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         spring_noise = alpha * rounding_ * (g.hi - g.lo);
       }
     }
-    const double friction = std::tan(lead.strength.friction_angle);
-    const double limit = std::max(0.0, bearing) * friction + cohesion;
+    const double friction = law_->friction_coefficient(lead);
+    const double limit = law_->shear_limit(std::max(0.0, bearing), friction, cohesion);
     const ContactMode before = lead.mode;
     const bool coupled = friction_coupled(lead); // in the solve that gave raw
     ContactMode after = before;
@@ -509,7 +510,8 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
         // motion against a spring of the same stiffness, beats friction on the normal force
         // the penetration gives; open -> lock otherwise.
         const double trial_shear = std::abs(motion) * stiffness;
-        const double trial_limit = std::max(0.0, deepest) * stiffness * friction + cohesion;
+        const double trial_limit =
+            law_->shear_limit(std::max(0.0, deepest) * stiffness, friction, cohesion);
         if (trial_shear > trial_limit && !hold_shear_) {
           after = ContactMode::slide;
           sign = motion > 0.0 ? 1 : -1;
@@ -618,7 +620,7 @@ ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd
       p.normal_force = now * share;
       p.shear_force = after == ContactMode::lock ? p.stiffness * measure[at(q)].shear
                       : after == ContactMode::slide
-                          ? sign * (std::max(0.0, now) * friction * share + bond_cohesion(p))
+                          ? sign * (std::max(0.0, now) * friction * share + law_->bond_cohesion(p))
                           : 0.0;
     }
     if (after == ContactMode::slide) {
@@ -800,14 +802,8 @@ void ContactSystem::break_yielded_interfaces(const Model& model, const Eigen::Ve
     if (lead.mode == ContactMode::open) {
       // Open at the end of the step: this part breaks where its springs would pull beyond
       // its tensile strength (not where the chatter rule holds it open within it).
-      double pull = 0.0;
-      double strength = 0.0;
-      for (int q = 0; q < g.count; ++q) {
-        const ContactPoint& p = points_[at(g.first + q)];
-        pull += p.stiffness * p.gap;
-        strength += p.strength.tensile_strength * p.length;
-      }
-      if (pull > strength)
+      if (law_->breaks_open(
+              std::span<const ContactPoint>(points_).subspan(at(g.first), at(g.count))))
         unbond(g, g.key);
       continue;
     }

@@ -4,7 +4,9 @@
 // 6.2-6.5 and 8.2; Mohr-Coulomb joints with cohesion and tensile strength).
 #pragma once
 
+#include "contact/contact_point.hpp"
 #include "contact/detection.hpp"
+#include "contact/joint_law.hpp"
 #include "contact/key_set.hpp"
 #include "manifold/model.hpp"
 
@@ -13,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -20,16 +23,6 @@
 #include <vector>
 
 namespace nmm {
-
-/// Mohr-Coulomb strength of a joint or a contact surface.
-struct JointStrength {
-  double friction_angle = 0.0;   ///< radians, in [0, pi/2)
-  double cohesion = 0.0;         ///< Pa
-  double tensile_strength = 0.0; ///< Pa
-};
-
-/// The three contact modes of Shi's open-close iteration (1997, 8.2).
-enum class ContactMode : std::uint8_t { open, slide, lock };
 
 /// The boundary loops of @p model flattened for detection, loop after loop (vertex k of loop
 /// l is the edge from it to the next vertex), with the block areas as meshed.
@@ -83,69 +76,6 @@ struct ContactOptions {
   /// goes on as it is (its penetration is reported).
   int augment_max = 10;
 };
-
-/// One contact point: an angle against its entrance line, or one Gauss point of an
-/// edge-to-edge pair, with its own state.
-struct ContactPoint {
-  std::uint64_t key = 0;         ///< identity of the contact (ContactCandidate::key)
-  int slave_edge = -1;           ///< the edge (element) the slave point moves with
-  Point2 slave = Point2::Zero(); ///< slave point at the start of the step
-  /// Edge-to-edge: position of the slave point on its edge (0 at its first vertex, 1 at the
-  /// next); the same material point from step to step.
-  double u = 0.0;
-  int master = -1;        ///< master edge (entrance line)
-  double length = 0.0;    ///< tributary length for strengths and integrated stiffness, m
-  double stiffness = 0.0; ///< normal and shear spring stiffness, N/m
-  JointStrength strength; ///< of the pair (the weaker of the two sides)
-  bool bonded = false;    ///< intact joint: holds tension and cohesion until it breaks
-  ContactMode mode = ContactMode::open;
-  /// Contact position on the master edge's line (parameter: 0 at its first vertex, 1 at the
-  /// next; beyond them when the slave has moved past an end) where the shear spring of a
-  /// locked contact is anchored (Shi 3.5, P0), carried to the next step.
-  double anchor = 0.0;
-  /// Sliding direction along the master edge (+1, -1).
-  int slide_sign = 0;
-  int flips = 0;             ///< open/closed switches in this step (chatter rule)
-  int slips = 0;             ///< lock/slide switches in this step (chatter rule)
-  double normal_force = 0.0; ///< compressive positive, N
-  double shear_force = 0.0;  ///< along the master edge, N
-  double gap = 0.0;          ///< normal gap at the end of the last solve (negative: penetration)
-  /// Angle contacts: the gap at which the normal spring starts to push (<= 0). A contact that
-  /// appears already penetrating, because the contact it replaces had softer springs (a
-  /// face that turned past the angle criterion: edge-to-edge springs on a short pressed part
-  /// let a corner sink in hundreds of times deeper than a point spring would), takes that
-  /// penetration as its springs' zero instead of throwing the bodies apart. It rises with
-  /// the gap once the contact opens, and is 0 for everything that meets in the ordinary
-  /// way. The springs push with p (offset + shift - gap).
-  double offset = 0.0;
-  /// Augmented-Lagrange multiplier over the spring stiffness, m (ContactOptions::
-  /// penetration_tolerance): the springs' zero moved by the penetrations of the step's
-  /// earlier solves, so that they push with the force the multiplier carries plus p times
-  /// the penetration left; it decides opening and closing as the springs' force does (an open
-  /// contact's falls back by its gap at the next pass). 0 at the start of every step
-  /// (multipliers carried to the next step, as Lin et al. do, pushed landing blocks off again:
-  /// docs/formulation.md, "Augmented Lagrange").
-  double shift = 0.0;
-};
-
-/// The cohesion a bonded point keeps while it slides at its Mohr-Coulomb limit: an intact
-/// joint yields plastically in shear, c times the length the point represents, N; 0 unbonded.
-[[nodiscard]] inline double bond_cohesion(const ContactPoint& p) {
-  return p.bonded ? p.strength.cohesion * p.length : 0.0;
-}
-
-/// The friction force of a sliding point as its spring pair's load (Shi eq. 3.27-3.33):
-/// normal force of the last iteration times tan(friction angle), plus bond_cohesion() of a
-/// bonded point, N; 0 when the point does not slide, or is neither pressed with friction nor
-/// bonded with cohesion (no friction term is assembled then).
-[[nodiscard]] inline double friction_force(const ContactPoint& p) {
-  if (p.mode != ContactMode::slide)
-    return 0.0;
-  const double bond = bond_cohesion(p);
-  if (p.normal_force <= 0.0 || p.strength.friction_angle == 0.0)
-    return bond;
-  return p.normal_force * std::tan(p.strength.friction_angle) + bond;
-}
 
 /// One end of the part of an edge-to-edge overlap that has springs, as the lift-off
 /// iteration moves it (docs/formulation.md, "Lift-off"). Where the springs should end is
@@ -529,8 +459,8 @@ private:
   [[nodiscard]] double projection(int master, const Point2& x) const;
 
   ContactOptions options_;
-  std::vector<std::vector<JointStrength>> strength_of_edge_;
-  std::vector<std::vector<bool>> bonded_edge_;
+  /// The joints' strength: every decision on it (MohrCoulombJoint; shared, never changed).
+  std::shared_ptr<const JointLaw> law_;
   ContactBoundary boundary_;
   std::vector<int> edge_element_;
   std::vector<JointStrength> edge_strength_;
@@ -596,8 +526,7 @@ private:
   [[nodiscard]] double group_stiffness(const Group& g) const;
   /// Whether point @p p's friction is coupled in the solve (set_coupled_friction()).
   [[nodiscard]] bool friction_coupled(const ContactPoint& p) const noexcept {
-    return coupled_friction_ && p.mode == ContactMode::slide && p.strength.friction_angle > 0.0 &&
-           !p.bonded;
+    return coupled_friction_ && p.mode == ContactMode::slide && law_->has_pure_friction(p);
   }
   /// Rounding of the coordinates of the step, m: gaps and motions within it change no mode.
   double rounding_ = 0.0;

@@ -237,9 +237,7 @@ void ContactSystem::save_state(StateWriter& out) const {
 
 void ContactSystem::load_state(StateReader& in) {
   in.section("CONT");
-  std::size_t n_edges = 0;
-  for (const auto& loop : strength_of_edge_)
-    n_edges += loop.size();
+  const std::size_t n_edges = law_->n_surfaces();
   auto edge = [&](std::int64_t e) {
     if (e < 0 || static_cast<std::size_t>(e) >= n_edges)
       in.fail("a contact names edge " + std::to_string(e) + " of " + std::to_string(n_edges));

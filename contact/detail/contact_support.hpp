@@ -23,12 +23,6 @@ inline std::size_t at(int i) { return static_cast<std::size_t>(i); }
 /// perp(w) = (w.y, -w.x): cross(u, w) = u . perp(w).
 inline Point2 perp(const Point2& w) { return {w.y(), -w.x()}; }
 
-/// The weaker of two surfaces' strengths, property by property (a pair's strength).
-inline JointStrength weaker(const JointStrength& a, const JointStrength& b) {
-  return {std::min(a.friction_angle, b.friction_angle), std::min(a.cohesion, b.cohesion),
-          std::min(a.tensile_strength, b.tensile_strength)};
-}
-
 /// Whether a contact in mode @p m has springs (slide or lock).
 inline bool closed(ContactMode m) { return m != ContactMode::open; }
 
