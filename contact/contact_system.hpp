@@ -8,6 +8,7 @@
 #include "contact/detection.hpp"
 #include "contact/joint_law.hpp"
 #include "contact/key_set.hpp"
+#include "contact/lift_off.hpp"
 #include "manifold/model.hpp"
 
 #include <Eigen/Core>
@@ -75,26 +76,6 @@ struct ContactOptions {
   /// Most augmented-Lagrange passes in a step; a step still penetrating by more after them
   /// goes on as it is (its penetration is reported).
   int augment_max = 10;
-};
-
-/// One end of the part of an edge-to-edge overlap that has springs, as the lift-off
-/// iteration moves it (docs/formulation.md, "Lift-off"). Where the springs should end is
-/// a root of wanted(x) - x, wanted(x) being where the edges stop pressing when the springs
-/// end at x: more springs, less pressed. A search finds it by false position (Illinois)
-/// between the two last places, one on each side.
-struct LiftOffEnd {
-  double moved = 0.0;     ///< the last move (its sign: which way the end went)
-  bool bracketed = false; ///< the root lies between a and b
-  double a = 0.0;         ///< a place of the end, and wanted - a there
-  double ga = 0.0;
-  double b = 0.0; ///< another, with wanted - b of the other sign
-  double gb = 0.0;
-  int kept = 0; ///< the bracket end the last search step kept (+1: b, -1: a)
-  /// The next place of a searching end now at @p now whose edges stop pressing at
-  /// @p wanted: @p wanted until a move goes back, then false position in the bracket of the
-  /// last two places; a bracket narrower than @p negligible no longer holds the root (the
-  /// pair's motion changed under it), and the end goes to @p wanted again.
-  [[nodiscard]] double next(double now, double wanted, double negligible);
 };
 
 /// What one open-close iteration found.
@@ -443,8 +424,30 @@ private:
                               int sample,
                               const std::vector<std::pair<double, double>>& shifts,
                               const Eigen::VectorXd& raw) const;
-  /// Places the Gauss points of edge group g on [from, to] (anchors from @p anchor_of(u)).
-  template <class AnchorOf> void place(Group& g, double from, double to, const AnchorOf& anchor_of);
+  /// Places the Gauss points of edge group g on [from, to], anchored where the slave points
+  /// project on the master, shifted by the shear offsets @p offsets interpolated at their u
+  /// (offset_at()) when given.
+  void
+  place(Group& g, double from, double to, const std::vector<std::pair<double, double>>* offsets);
+  /// What update_modes() found of an edge-to-edge contact whose springs may move to where
+  /// its edges press (docs/formulation.md, "Lift-off").
+  struct LiftOff {
+    int group = 0;
+    OverlapPart part;
+    bool just_closed = false;
+    double pulling = 0.0; ///< force of the springs on parts that no longer press (tension)
+    double pushing = 0.0; ///< force the springs would take on parts that now press
+    /// force of the springs over the whole overlap stretched by the rounding
+    double spring_noise = 0.0;
+    double bearing = 0.0; ///< the pair's normal force (its springs that push)
+  };
+  /// The part of group @p l.group that is to have springs, or none when they stay: the
+  /// pressed part, or the next place of a search, or the pressed part within the springs'
+  /// (a settled contact), by the forces of @p l against all contact force @p total_normal.
+  [[nodiscard]] OverlapPart lift_off_part(const LiftOff& l, double total_normal);
+  /// Moves the springs of the group of @p l to @p part (anchors, multipliers and normal
+  /// forces going with them), counted in @p update.
+  void move_springs(const LiftOff& l, const OverlapPart& part, ModeUpdate& update);
   /// (u, ContactPoint::shift) of the points of group g; empty when every shift is 0 (no
   /// augmented-Lagrange pass: nothing allocated).
   [[nodiscard]] std::vector<std::pair<double, double>> shifts_of(const Group& g) const;

@@ -33,13 +33,6 @@ inline constexpr std::array<double, 2> w2{0.5, 0.5};
 inline constexpr std::array<double, 3> xi3{0.11270166537925831, 0.5, 0.88729833462074169};
 inline constexpr std::array<double, 3> w3{5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
 
-/// A part [from, to] of an overlap, or none.
-struct Part {
-  bool found = false;
-  double from = 0.0;
-  double to = 0.0;
-};
-
 /// The gap along an edge-to-edge overlap [lo, hi] (slave parameters): linear from its values
 /// at the ends (order-0 covers), or quadratic through the ends and the middle (order 1).
 class GapProfile {
@@ -59,7 +52,7 @@ public:
 
   /// The part where the gap is negative (for a quadratic, the hull of its negative parts).
   /// Parts shorter than 1e-6 of the overlap count as none.
-  [[nodiscard]] Part negative() const {
+  [[nodiscard]] OverlapPart negative() const {
     // The ends and the roots in [0, 1], sorted.
     std::array<double, 4> cuts{0.0, 1.0};
     std::size_t n = 2;
