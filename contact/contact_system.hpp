@@ -461,6 +461,119 @@ private:
   /// Anchor parameter on the master of the projection of slave point @p x.
   [[nodiscard]] double projection(int master, const Point2& x) const;
 
+  // begin_step(), in parts.
+  /// The boundary at the start of the step, and each edge's element, strength and bond.
+  void set_up_boundary(const Model& model);
+  /// Puts the spring of angle-to-angle candidate @p c on the entrance line with the smaller
+  /// passing distance (Shi 3.2 [1]): @p p's slave and master.
+  void choose_entrance_line(const ContactCandidate& c, ContactPoint& p) const;
+  /// Adds the contact of candidate @p c (none for an angle pair made already, in
+  /// @p angle_pairs, or an edge pair that only touches at an end), with its state carried
+  /// or new; @p g0 and @p offsets are workspaces.
+  void add_contact(const ContactCandidate& c,
+                   const CarriedByEdge& carried,
+                   KeySet& angle_pairs,
+                   std::vector<double>& g0,
+                   std::vector<std::pair<double, double>>& offsets);
+  /// Adds the point of angle contact @p c, made from @p p, to group @p g, and its gap at the
+  /// start of the step to @p g0.
+  void
+  add_angle_point(const ContactCandidate& c, Group& g, ContactPoint& p, std::vector<double>& g0);
+  /// Adds the Gauss points of edge pair @p c, made from @p p, to group @p g with its overlap,
+  /// and the gaps at the overlap's ends to @p g0; false (nothing added) when the overlap only
+  /// touches.
+  bool
+  add_edge_points(const ContactCandidate& c, Group& g, ContactPoint& p, std::vector<double>& g0);
+  /// The state of group @p g at the start of the step (Shi 3.3): broken bonds, the mode,
+  /// anchors and offset carried or new, the springs placed and the normal force shared.
+  void start_contact(Group& g,
+                     const ContactPoint& p,
+                     const CarriedByEdge& carried,
+                     const std::vector<double>& g0,
+                     std::vector<std::pair<double, double>>& offsets);
+  /// The shapes of the elements of every contact point's edges.
+  void set_up_shapes(const Model& model);
+
+  // update_modes(), in parts.
+  /// Gap, shear and step motion of one point after a solve.
+  struct Measure {
+    double gap = 0.0;
+    double shear = 0.0;
+    double ds = 0.0;
+  };
+  /// What one contact's mode decision is made from: the resultants of its points' springs
+  /// (stiffness-weighted gap and motion), its bonds' cohesion and tension, friction, its
+  /// shear limit, and for an edge pair where its edges press.
+  struct Resultants {
+    double stiffness = 0.0;
+    double normal = 0.0; ///< resultant, compressive positive
+    double shear = 0.0;  ///< resultant of the shear springs (lock)
+    double motion = 0.0; ///< stiffness-weighted tangential step motion
+    double gap = 0.0;    ///< stiffness-weighted gap
+    double cohesion = 0.0;
+    double tension = 0.0;
+    double friction = 0.0;     ///< JointLaw::friction_coefficient()
+    double noise = 0.0;        ///< force of the springs stretched by the rounding
+    OverlapPart pressed;       ///< edge pair: where the edges now press
+    double deepest = 0.0;      ///< deepest penetration
+    double pulling = 0.0;      ///< force of the springs on parts that no longer press
+    double pushing = 0.0;      ///< force the springs would take on the parts that now press
+    double spring_noise = 0.0; ///< force of the pair's springs stretched by the rounding
+    bool tie = false;          ///< every gap sample within the rounding
+    double bearing = 0.0;      ///< the normal force the contact bears
+    double limit = 0.0;        ///< shear limit on it
+  };
+  /// A contact's mode before and after a decision, its sliding direction, and whether its
+  /// friction was coupled in the solve.
+  struct ModeStep {
+    ContactMode before = ContactMode::open;
+    ContactMode after = ContactMode::open;
+    int sign = 0;
+    bool coupled = false;
+  };
+  /// Work of friction in the step (ModeUpdate::friction_residual): of its change since it
+  /// was applied, and of all of it.
+  struct FrictionWork {
+    double change = 0.0;
+    double total = 0.0;
+  };
+  /// Gap, shear and step motion of every point of group @p g after the solve @p raw, into
+  /// @p measure (and each point's gap).
+  void measure_points(const Model& model,
+                      const Group& g,
+                      const Eigen::VectorXd& raw,
+                      std::vector<Measure>& measure);
+  /// The Resultants of group @p g from @p measure.
+  [[nodiscard]] Resultants resultants(const Model& model,
+                                      const Group& g,
+                                      const Eigen::VectorXd& raw,
+                                      const std::vector<Measure>& measure) const;
+  /// The part of @p r on what the contact bears and, for an edge pair, where its edges press
+  /// after the solve @p raw, and its shear limit.
+  void pressing(const Model& model,
+                const Group& g,
+                const Eigen::VectorXd& raw,
+                const std::vector<Measure>& measure,
+                Resultants& r) const;
+  /// The new mode of group @p g by Shi's table (8.2) and the chatter rule.
+  [[nodiscard]] ModeStep decide_mode(const Group& g, const Resultants& r);
+  /// The mode of a closed contact that stays closed, led by @p lead: a lock that slips, a
+  /// slide that sticks or turns, or the chatter rule holding either at the limit of friction.
+  [[nodiscard]] ModeStep closed_mode(const ContactPoint& lead, const Resultants& r);
+  /// Sets the mode of @p step on the points of @p g (anchoring a contact that closes at its
+  /// entrance position), counting flips and slips.
+  void set_modes(const Model& model,
+                 const Group& g,
+                 const std::vector<Measure>& measure,
+                 const ModeStep& step);
+  /// The normal and shear forces of the points of @p g in their new mode, and the work of
+  /// its friction added to @p work_done.
+  void set_forces(const Group& g,
+                  const std::vector<Measure>& measure,
+                  const Resultants& r,
+                  const ModeStep& step,
+                  FrictionWork& work_done);
+
   ContactOptions options_;
   /// The joints' strength: every decision on it (MohrCoulombJoint; shared, never changed).
   std::shared_ptr<const JointLaw> law_;
