@@ -131,19 +131,11 @@ void ContactSystem::kinematics(const Model& model,
 }
 
 void ContactSystem::kinematics_apart(const PointTerms& terms, Kinematics& k, KinematicsWork& work) {
-  const std::span<const int> slave_dofs = terms.slave_dofs;
-  const std::span<const int> master_dofs = terms.master_dofs;
-  const ElementShape& slave_shape = terms.slave_shape;
-  const ElementShape& master_shape = terms.master_shape;
-  const Point2& a = terms.a;
-  const Point2& b = terms.b;
-  const Point2& normal = terms.normal;
-  const Point2& tangent = terms.tangent;
-  const std::array<Term, 5>& master_normal = terms.master_normal;
-  const std::size_t n_master_normal = terms.n_master_normal;
+  const auto& [slave_dofs, master_dofs, slave_shape, master_shape, slave, slave_a, slave_b, a, b,
+               tangent, normal, master_normal, n_master_normal, master_shear] = terms;
   PointInterpolation& t = work.t;
   std::vector<int>& columns = work.columns;
-  slave_shape.interpolation_on_edge(terms.slave, terms.slave_a, terms.slave_b, t, columns);
+  slave_shape.interpolation_on_edge(slave, slave_a, slave_b, t, columns);
   const auto ns = static_cast<Eigen::Index>(columns.size());
   for (const int column : columns)
     k.dofs.push_back(slave_dofs[at(column)]);
@@ -172,20 +164,14 @@ void ContactSystem::kinematics_apart(const PointTerms& terms, Kinematics& k, Kin
   k.hs.tail(nm).setZero();
   for (std::size_t q = 0; q < n_master_normal; ++q)
     add_master(k.hn.tail(nm), master_normal[q], q == 0);
-  add_master(k.hs.tail(nm), terms.master_shear, false);
+  add_master(k.hs.tail(nm), master_shear, false);
 }
 
 void ContactSystem::kinematics_shared(const PointTerms& terms,
                                       Kinematics& k,
                                       KinematicsWork& work) {
-  const std::span<const int> slave_dofs = terms.slave_dofs;
-  const std::span<const int> master_dofs = terms.master_dofs;
-  const ElementShape& slave_shape = terms.slave_shape;
-  const ElementShape& master_shape = terms.master_shape;
-  const Point2& a = terms.a;
-  const Point2& b = terms.b;
-  const Point2& slave_a = terms.slave_a;
-  const Point2& slave_b = terms.slave_b;
+  const auto& [slave_dofs, master_dofs, slave_shape, master_shape, slave, slave_a, slave_b, a, b,
+               tangent, normal, master_normal, n_master_normal, master_shear] = terms;
   PointInterpolation& t = work.t;
   std::vector<int>& columns = work.columns;
   // Elements that share unknowns: each unknown is looked up where it is first used: local[c] for
@@ -220,11 +206,11 @@ void ContactSystem::kinematics_shared(const PointTerms& terms,
       h[static_cast<std::size_t>(position)] += t(0, col) * term.c.x() + t(1, col) * term.c.y();
     }
   };
-  add(false, false, {terms.slave, terms.normal});
-  for (std::size_t q = 0; q < terms.n_master_normal; ++q)
-    add(false, true, terms.master_normal[q]);
-  add(true, false, {terms.slave, terms.tangent});
-  add(true, true, terms.master_shear);
+  add(false, false, {slave, normal});
+  for (std::size_t q = 0; q < n_master_normal; ++q)
+    add(false, true, master_normal[q]);
+  add(true, false, {slave, tangent});
+  add(true, true, master_shear);
   // Cut to the unknowns used (fewer than bound on a VEM block's edge, or where the elements
   // share unknowns).
   const auto n = static_cast<Eigen::Index>(k.dofs.size());

@@ -97,43 +97,28 @@ ContactSystem::Resultants ContactSystem::resultants(const Model& model,
   // Modes by Shi's table (8.2), decided per contact from its resultants: an angle contact
   // is one point; the Gauss points of an edge-to-edge pair decide together, as one joint
   // element would.
-  double stiffness = 0.0;
-  double normal = 0.0; // resultant, compressive positive
-  double shear = 0.0;  // resultant of the shear springs (lock)
-  double motion = 0.0; // stiffness-weighted tangential step motion
-  double gap = 0.0;    // stiffness-weighted gap
-  double cohesion = 0.0;
-  double tension = 0.0;
+  Resultants r;
   for (int q = 0; q < g.count; ++q) {
     const ContactPoint& p = points_[at(g.first + q)];
-    stiffness += p.stiffness;
-    normal -= p.stiffness * measure[at(q)].gap;
-    shear += p.stiffness * measure[at(q)].shear;
-    motion += p.stiffness * measure[at(q)].ds;
-    gap += p.stiffness * measure[at(q)].gap;
+    r.stiffness += p.stiffness;
+    r.normal -= p.stiffness * measure[at(q)].gap;
+    r.shear += p.stiffness * measure[at(q)].shear;
+    r.motion += p.stiffness * measure[at(q)].ds;
+    r.gap += p.stiffness * measure[at(q)].gap;
     if (p.bonded) {
-      cohesion += law_->bond_cohesion(p);
-      tension += law_->bond_tension(p);
+      r.cohesion += law_->bond_cohesion(p);
+      r.tension += law_->bond_tension(p);
     }
   }
-  const ContactPoint& lead = points_[at(g.first)];
-  if (stiffness > 0.0) {
-    gap /= stiffness;
-    motion /= stiffness;
+  if (r.stiffness > 0.0) {
+    r.gap /= r.stiffness;
+    r.motion /= r.stiffness;
   } else {
-    gap = measure[0].gap;
-    motion = measure[0].ds;
+    r.gap = measure[0].gap;
+    r.motion = measure[0].ds;
   }
-  Resultants r;
-  r.stiffness = stiffness;
-  r.normal = normal;
-  r.shear = shear;
-  r.motion = motion;
-  r.gap = gap;
-  r.cohesion = cohesion;
-  r.tension = tension;
-  r.friction = law_->friction_coefficient(lead);
-  r.noise = stiffness * rounding_;
+  r.friction = law_->friction_coefficient(points_[at(g.first)]);
+  r.noise = r.stiffness * rounding_;
   pressing(model, g, raw, measure, r);
   return r;
 }
@@ -143,28 +128,21 @@ void ContactSystem::pressing(const Model& model,
                              const Eigen::VectorXd& raw,
                              const std::vector<Measure>& measure,
                              Resultants& r) const {
-  const ContactPoint& lead = points_[at(g.first)];
-  const double normal = r.normal;
-  const double gap = r.gap;
   // Edge-to-edge: where the edges now press on each other (the gap is linear along the
-  // edge for order-0 covers, quadratic for order 1).
-  OverlapPart pressed;
-  double deepest = -gap;
-  double pulling = 0.0; // force of the springs on parts that no longer press
-  double pushing = 0.0; // force the springs would take on the parts that now press
-  // The force of the pair's springs all along its overlap stretched by the rounding: a
-  // spring move that gains or loses less is none.
-  double spring_noise = 0.0;
-  bool tie = false; // every gap sample within the rounding
+  // edge for order-0 covers, quadratic for order 1), the force of the springs on parts that
+  // no longer press and the force they would take on the parts that now press, and the
+  // force of the pair's springs all along its overlap stretched by the rounding (a spring
+  // move that gains or loses less is none).
+  r.deepest = -r.gap;
   // The normal force the contact bears: the resultant of its springs, or, for the springs of
   // an edge-to-edge pair that go where the edges press, that of its springs that push. Springs
   // left where the edges have lifted off pull; their tension is no normal force for friction
   // (a pair tipping onto one end would otherwise slide on the force of a lifting end).
-  double bearing = normal;
-  if (g.edge && !lead.bonded) {
-    bearing = 0.0;
+  r.bearing = r.normal;
+  if (g.edge && !points_[at(g.first)].bonded) {
+    r.bearing = 0.0;
     for (int q = 0; q < g.count; ++q)
-      bearing += points_[at(g.first + q)].stiffness * std::max(0.0, -measure[at(q)].gap);
+      r.bearing += points_[at(g.first + q)].stiffness * std::max(0.0, -measure[at(q)].gap);
   }
   if (g.edge) {
     const std::vector<std::pair<double, double>> shifts = shifts_of(g);
@@ -175,43 +153,25 @@ void ContactSystem::pressing(const Model& model,
     gaps[n++] = gap_at(model, g, 2, shifts, raw);
     const std::span<const double> samples(gaps.data(), n);
     const GapProfile profile(g.lo, g.hi, samples);
-    pressed = profile.negative();
-    deepest = -*std::min_element(samples.begin(), samples.end());
-    tie = std::all_of(samples.begin(), samples.end(),
-                      [&](double s) { return std::abs(s) <= rounding_; });
-    if (pressed.found) {
+    r.pressed = profile.negative();
+    r.deepest = -*std::min_element(samples.begin(), samples.end());
+    r.tie = std::all_of(samples.begin(), samples.end(),
+                        [&](double s) { return std::abs(s) <= rounding_; });
+    if (r.pressed.found) {
       const double alpha =
           options_.penalty / options_.spring_length * std::abs(g.t_next - g.t_first);
-      pulling = alpha * profile.outside(g.from, g.to, pressed.from, pressed.to);
-      pushing = alpha * profile.outside(pressed.from, pressed.to, g.from, g.to);
-      spring_noise = alpha * rounding_ * (g.hi - g.lo);
+      r.pulling = alpha * profile.outside(g.from, g.to, r.pressed.from, r.pressed.to);
+      r.pushing = alpha * profile.outside(r.pressed.from, r.pressed.to, g.from, g.to);
+      r.spring_noise = alpha * rounding_ * (g.hi - g.lo);
     }
   }
-  r.pressed = pressed;
-  r.deepest = deepest;
-  r.pulling = pulling;
-  r.pushing = pushing;
-  r.spring_noise = spring_noise;
-  r.tie = tie;
-  r.bearing = bearing;
-  r.limit = law_->shear_limit(std::max(0.0, bearing), r.friction, r.cohesion);
+  r.limit = law_->shear_limit(std::max(0.0, r.bearing), r.friction, r.cohesion);
 }
 
 ContactSystem::ModeStep ContactSystem::decide_mode(const Group& g, const Resultants& r) {
   const ContactPoint& lead = points_[at(g.first)];
   const ContactMode before = lead.mode;
   const bool coupled = friction_coupled(lead); // in the solve that gave raw
-  const double stiffness = r.stiffness;
-  const double normal = r.normal;
-  const double motion = r.motion;
-  const double gap = r.gap;
-  const double cohesion = r.cohesion;
-  const double tension = r.tension;
-  const OverlapPart& pressed = r.pressed;
-  const double deepest = r.deepest;
-  const bool tie = r.tie;
-  const double friction = r.friction;
-  const double noise = r.noise;
   ContactMode after = before;
   int sign = lead.slide_sign;
   const bool partial = g.edge && !lead.bonded; // springs only on the pressed part
@@ -225,25 +185,25 @@ ContactSystem::ModeStep ContactSystem::decide_mode(const Group& g, const Resulta
   // 1.4; docs/formulation.md, "Rounding").
   // An open bond closes again where its springs would pull within its tensile strength
   // (with no strength: where it penetrates, as any contact).
-  const bool closes = partial       ? pressed.found && deepest > rounding_
-                      : lead.bonded ? normal > -tension + noise
-                                    : gap < -rounding_;
+  const bool closes = partial       ? r.pressed.found && r.deepest > rounding_
+                      : lead.bonded ? r.normal > -r.tension + r.noise
+                                    : r.gap < -rounding_;
   if (before == ContactMode::open) {
     if (closes) {
       // Shi 8.2: open -> slide when the shear the lock would take, the step's tangential
       // motion against a spring of the same stiffness, beats friction on the normal force
       // the penetration gives; open -> lock otherwise.
-      const double trial_shear = std::abs(motion) * stiffness;
+      const double trial_shear = std::abs(r.motion) * r.stiffness;
       const double trial_limit =
-          law_->shear_limit(std::max(0.0, deepest) * stiffness, friction, cohesion);
+          law_->shear_limit(std::max(0.0, r.deepest) * r.stiffness, r.friction, r.cohesion);
       if (trial_shear > trial_limit && !hold_shear_) {
         after = ContactMode::slide;
-        sign = motion > 0.0 ? 1 : -1;
+        sign = r.motion > 0.0 ? 1 : -1;
       } else {
         after = ContactMode::lock;
       }
     }
-  } else if (partial ? !pressed.found && !tie : normal < -tension - noise) {
+  } else if (partial ? !r.pressed.found && !r.tie : r.normal < -r.tension - r.noise) {
     // Lifted off, or tension beyond the strength of a bond: a bond that is open when the
     // iteration has converged breaks (end_step()); one that an iteration on the way opens
     // keeps it, and holds again where it closes.
@@ -260,7 +220,7 @@ ContactSystem::ModeStep ContactSystem::decide_mode(const Group& g, const Resulta
   // penetrates by more than 1e-3 of the largest step displacement: then it is no near-zero
   // contact, it closes, and a step that cannot settle is cut.
   if (!closed(before) && closed(after) && lead.flips >= options_.chatter_limit &&
-      deepest <= held_open_penetration_) {
+      r.deepest <= held_open_penetration_) {
     after = ContactMode::open;
     ++counters_.chatter_holds;
   }
@@ -269,10 +229,6 @@ ContactSystem::ModeStep ContactSystem::decide_mode(const Group& g, const Resulta
 
 ContactSystem::ModeStep ContactSystem::closed_mode(const ContactPoint& lead, const Resultants& r) {
   const ContactMode before = lead.mode;
-  const double shear = r.shear;
-  const double motion = r.motion;
-  const double limit = r.limit;
-  const double noise = r.noise;
   ContactMode after = before;
   int sign = lead.slide_sign;
   if (before == ContactMode::lock) {
@@ -288,29 +244,29 @@ ContactSystem::ModeStep ContactSystem::closed_mode(const ContactPoint& lead, con
     // limit is never held: with no normal force and no cohesion it slides freely, which
     // cannot chatter (a tunnel's faces at a tie were held with 0.42 MN of shear and no
     // normal force).
-    if (std::abs(shear) > limit + noise && !hold_shear_) {
-      if (limit > 0.0 && lead.slips >= options_.chatter_limit && !dynamic_) {
+    if (std::abs(r.shear) > r.limit + r.noise && !hold_shear_) {
+      if (r.limit > 0.0 && lead.slips >= options_.chatter_limit && !dynamic_) {
         ++counters_.chatter_holds;
-        held_beyond_.emplace_back(std::abs(shear) - limit, std::abs(shear) / limit);
+        held_beyond_.emplace_back(std::abs(r.shear) - r.limit, std::abs(r.shear) / r.limit);
       } else {
         after = ContactMode::slide;
-        sign = shear > 0.0 ? 1 : -1;
+        sign = r.shear > 0.0 ? 1 : -1;
       }
     }
-  } else if (motion * lead.slide_sign < -rounding_) {
+  } else if (r.motion * lead.slide_sign < -rounding_) {
     // The sliding reversed against its friction: it sticks. Without any friction or
     // cohesion nothing can hold it: it keeps sliding, the other way (a lock would let go
     // at once and the two would alternate for ever). In a dynamic step a contact at the
     // chatter limit keeps sliding, its friction at the limit and in its direction: the
     // force is Coulomb's, and what it does along a motion that turned back is reported
     // (ModeUpdate::slide_feed).
-    if (limit > 0.0 && !hold_shear_ && dynamic_ && lead.slips >= options_.chatter_limit) {
+    if (r.limit > 0.0 && !hold_shear_ && dynamic_ && lead.slips >= options_.chatter_limit) {
       ++counters_.chatter_holds;
-      held_against_.emplace_back(limit, std::abs(motion));
-    } else if (limit > 0.0 && !hold_shear_) {
+      held_against_.emplace_back(r.limit, std::abs(r.motion));
+    } else if (r.limit > 0.0 && !hold_shear_) {
       after = ContactMode::lock;
     } else {
-      sign = motion > 0.0 ? 1 : -1;
+      sign = r.motion > 0.0 ? 1 : -1;
     }
   }
   return {before, after, sign, false};
@@ -355,15 +311,7 @@ void ContactSystem::set_forces(const Group& g,
                                const Resultants& r,
                                const ModeStep& step,
                                FrictionWork& work_done) {
-  const ContactMode before = step.before;
-  const ContactMode after = step.after;
-  const int sign = step.sign;
-  const double friction = r.friction;
-  const double motion = r.motion;
-  const double cohesion = r.cohesion;
-  const double bearing = r.bearing;
-  const double noise = r.noise;
-  const bool coupled = step.coupled;
+  const auto [before, after, sign, coupled] = step;
   // Friction from this solve's normal force, shared by stiffness. A contact that just
   // closed has none yet: the penetration it reached while open, without its spring,
   // overestimates it many times (friction from it can throw a block back up a slope).
@@ -373,7 +321,7 @@ void ContactSystem::set_forces(const Group& g,
       sum += points_[at(g.first + q)].normal_force;
     return sum;
   }();
-  const double now = closed(after) && closed(before) ? bearing : 0.0;
+  const double now = closed(after) && closed(before) ? r.bearing : 0.0;
   const double placed = group_stiffness(g);
   // The shear force on the master along its edge (first vertex to next): the spring's pull,
   // or friction's, which opposes the slave's sliding (sign) and so pulls the master along.
@@ -383,14 +331,14 @@ void ContactSystem::set_forces(const Group& g,
     p.normal_force = now * share;
     p.shear_force = after == ContactMode::lock ? p.stiffness * measure[at(q)].shear
                     : after == ContactMode::slide
-                        ? sign * (std::max(0.0, now) * friction * share + law_->bond_cohesion(p))
+                        ? sign * (std::max(0.0, now) * r.friction * share + law_->bond_cohesion(p))
                         : 0.0;
   }
   if (after == ContactMode::slide) {
-    const double work = friction * std::abs(motion);
+    const double work = r.friction * std::abs(r.motion);
     // Friction acts on the compressive part of the normal force (a bond in tension slides
     // on its cohesion alone), and the cohesion a bond slides with is friction work too.
-    work_done.total += work * std::max(0.0, now) + cohesion * std::abs(motion);
+    work_done.total += work * std::max(0.0, now) + r.cohesion * std::abs(r.motion);
     // A change of the normal force within that of the springs stretched by the rounding is
     // none (the friction of a contact at a tie, on a normal force of rounding, would be
     // chased for ever: its relative change never settles). Coupled friction acted with the
@@ -400,7 +348,7 @@ void ContactSystem::set_forces(const Group& g,
     const double change = coupled                        ? 0.0
                           : before == ContactMode::slide ? std::max(0.0, now) - std::max(0.0, used)
                                                          : std::max(0.0, now);
-    if (std::abs(change) > noise)
+    if (std::abs(change) > r.noise)
       work_done.change += work * std::abs(change);
   }
 }
