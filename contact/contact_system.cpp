@@ -1,19 +1,16 @@
 // SPDX-License-Identifier: MIT
-// contact/contact_system.cpp — ContactSystem: the contacts of a step from the detection's
-// candidates, the open-close mode decisions, transfer of closed contacts to the next step.
+// contact/contact_system.cpp — ContactSystem: the contacts of a step made from the
+// detection's candidates with their states at its start (begin_step()), the bonds of the
+// interfaces that have yielded by its end, and what the contacts are now for output.
 #include "contact/contact_system.hpp"
 
 #include "contact/detail/contact_support.hpp"
 #include "contact/key_set.hpp"
 #include "mesh/error.hpp"
-#include "mesh/parallel.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <numeric>
 #include <span>
-#include <sstream>
 
 namespace nmm {
 

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: MIT
+// contact/joint_law.cpp — Mohr-Coulomb joints with cohesion and tensile strength.
 #include "contact/joint_law.hpp"
 
 #include <algorithm>
