@@ -1,184 +1,30 @@
 // SPDX-License-Identifier: MIT
+// contact/contact_system.cpp — ContactSystem: the contacts of a step made from the
+// detection's candidates with their states at its start (begin_step()), the bonds of the
+// interfaces that have yielded by its end, and what the contacts are now for output.
 #include "contact/contact_system.hpp"
 
+#include "contact/detail/contact_support.hpp"
 #include "contact/key_set.hpp"
 #include "mesh/error.hpp"
-#include "mesh/parallel.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
-#include <numeric>
 #include <span>
-#include <sstream>
 
 namespace nmm {
 
-namespace {
-
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
-
-/// perp(w) = (w.y, -w.x): cross(u, w) = u . perp(w).
-Point2 perp(const Point2& w) { return {w.y(), -w.x()}; }
-
-JointStrength weaker(const JointStrength& a, const JointStrength& b) {
-  return {std::min(a.friction_angle, b.friction_angle), std::min(a.cohesion, b.cohesion),
-          std::min(a.tensile_strength, b.tensile_strength)};
-}
-
-bool closed(ContactMode m) { return m != ContactMode::open; }
-
-/// m += (s h) h^T, entry (a, b) as (s h(a)) h(b): what Eigen's outer product computes, without
-/// its temporary for s h (an allocation for every spring in every open-close iteration); only
-/// the upper triangle (a <= b) when @p upper.
-void add_outer(Eigen::MatrixXd& m, double s, const Eigen::VectorXd& h, bool upper) {
-  const Eigen::Index n = h.size();
-  for (Eigen::Index b = 0; b < n; ++b) {
-    const double hb = h(b);
-    double* column = m.col(b).data();
-    const Eigen::Index rows = upper ? b + 1 : n;
-    for (Eigen::Index a = 0; a < rows; ++a)
-      column[a] += (s * h(a)) * hb;
-  }
-}
-
-// Gauss-Legendre points on [0, 1]: two for order-0 covers (the squared gap along an edge is
-// of degree 2), three for order 1 (degree 4).
-constexpr std::array<double, 2> xi2{0.21132486540518712, 0.78867513459481288};
-constexpr std::array<double, 2> w2{0.5, 0.5};
-constexpr std::array<double, 3> xi3{0.11270166537925831, 0.5, 0.88729833462074169};
-constexpr std::array<double, 3> w3{5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0};
-
-/// A part [from, to] of an overlap, or none.
-struct Part {
-  bool found = false;
-  double from = 0.0;
-  double to = 0.0;
-};
-
-/// The gap along an edge-to-edge overlap [lo, hi] (slave parameters): linear from its values
-/// at the ends (order-0 covers), or quadratic through the ends and the middle (order 1).
-class GapProfile {
-public:
-  GapProfile(double lo, double hi, std::span<const double> g) : lo_(lo), hi_(hi), c_(g.front()) {
-    b_ = g.back() - g.front();
-    if (g.size() == 3) {
-      b_ = 4.0 * g[1] - 3.0 * g[0] - g[2];
-      a_ = 2.0 * g[2] + 2.0 * g[0] - 4.0 * g[1];
-    }
-  }
-
-  [[nodiscard]] double at(double u) const {
-    const double s = hi_ > lo_ ? (u - lo_) / (hi_ - lo_) : 0.0;
-    return (a_ * s + b_) * s + c_;
-  }
-
-  /// The part where the gap is negative (for a quadratic, the hull of its negative parts).
-  /// Parts shorter than 1e-6 of the overlap count as none.
-  [[nodiscard]] Part negative() const {
-    // The ends and the roots in [0, 1], sorted.
-    std::array<double, 4> cuts{0.0, 1.0};
-    std::size_t n = 2;
-    auto cut = [&](double s) {
-      if (s >= 0.0 && s <= 1.0)
-        cuts[n++] = s;
-    };
-    if (std::abs(a_) > 1e-14 * (std::abs(b_) + std::abs(c_))) {
-      const double disc = b_ * b_ - 4.0 * a_ * c_;
-      if (disc > 0.0) {
-        const double q = -0.5 * (b_ + std::copysign(std::sqrt(disc), b_)); // stable roots
-        cut(q / a_);
-        if (q != 0.0)
-          cut(c_ / q);
-      }
-    } else if (b_ != 0.0) {
-      cut(-c_ / b_);
-    }
-    // Insertion sort of at most four values (std::sort's inlined introsort on a prefix of the
-    // array trips GCC 12's -Warray-bounds: it cannot see n <= 4).
-    for (std::size_t k = 1; k < n; ++k)
-      for (std::size_t j = k; j > 0 && cuts[j] < cuts[j - 1]; --j)
-        std::swap(cuts[j], cuts[j - 1]);
-    double first = 2.0;
-    double last = -1.0;
-    for (std::size_t k = 0; k + 1 < n; ++k) {
-      const double mid = 0.5 * (cuts[k] + cuts[k + 1]);
-      if (cuts[k + 1] > cuts[k] && (a_ * mid + b_) * mid + c_ < 0.0) {
-        first = std::min(first, cuts[k]);
-        last = std::max(last, cuts[k + 1]);
-      }
-    }
-    if (last - first < 1e-6)
-      return {};
-    return {true, lo_ + (hi_ - lo_) * first, lo_ + (hi_ - lo_) * last};
-  }
-
-  /// Integral of |gap| du over [from, to] (Simpson's rule on a quadratic: exact where the
-  /// gap keeps its sign).
-  [[nodiscard]] double magnitude(double from, double to) const {
-    if (to <= from)
-      return 0.0;
-    return (to - from) / 6.0 *
-           (std::abs(at(from)) + 4.0 * std::abs(at(0.5 * (from + to))) + std::abs(at(to)));
-  }
-
-  /// Integral of |gap| du over the parts of [f1, t1] outside [f2, t2].
-  [[nodiscard]] double outside(double f1, double t1, double f2, double t2) const {
-    return magnitude(f1, std::min(t1, f2)) + magnitude(std::max(f1, t2), t1);
-  }
-
-private:
-  double lo_;
-  double hi_;
-  double a_ = 0.0;
-  double b_ = 0.0;
-  double c_;
-};
-
-/// Lagrange interpolation of the (u, value) pairs at u (constant for one pair).
-double interpolate(const std::vector<std::pair<double, double>>& values, double u) {
-  if (values.size() == 1)
-    return values.front().second;
-  double result = 0.0;
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    double basis = 1.0;
-    for (std::size_t j = 0; j < values.size(); ++j) {
-      if (j == i)
-        continue;
-      const double span = values[i].first - values[j].first;
-      if (std::abs(span) < 1e-12) // points on a vanishing part: take their mean
-        return values.front().second;
-      basis *= (u - values[j].first) / span;
-    }
-    result += basis * values[i].second;
-  }
-  return result;
-}
-
-/// The shear offset of a locked edge-to-edge pair at slave parameter u, from the offsets
-/// (anchor minus the projection of the slave point on the master, in master parameters) of
-/// its points: interpolated between them, and the nearest one's beyond them. The springs of
-/// a pair move when the part that presses grows or shrinks; extrapolating anchors (or a
-/// polynomial of the offsets) from a short part to a long one multiplies the rounding-size
-/// differences between the points by the ratio of the lengths (millimetres of shear that
-/// never happened, a pressed part growing from 1e-5 m to 1e-3 m; examples/10).
-double offset_at(const std::vector<std::pair<double, double>>& offsets, double u) {
-  double lo = offsets.front().first;
-  double hi = lo;
-  for (const auto& [v, offset] : offsets) {
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  return interpolate(offsets, std::clamp(u, lo, hi));
-}
-
-} // namespace
+using detail::at;
+using detail::closed;
+using detail::GapProfile;
+using detail::offset_at;
+using detail::perp;
 
 ContactSystem::ContactSystem(ContactOptions options,
                              std::vector<std::vector<JointStrength>> strength_of_edge,
                              std::vector<std::vector<bool>> bonded_edge)
-    : options_(options), strength_of_edge_(std::move(strength_of_edge)),
-      bonded_edge_(std::move(bonded_edge)) {
+    : options_(options), law_(std::make_shared<const MohrCoulombJoint>(std::move(strength_of_edge),
+                                                                       std::move(bonded_edge))) {
   NMM_ASSERT(options_.penalty > 0.0 && options_.spring_length > 0.0,
              "contact springs need stiffness");
 }
@@ -193,78 +39,6 @@ bool ContactSystem::can_touch(const Model& model) {
     }
   }
   return false;
-}
-
-double ContactSystem::projection(int master, const Point2& x) const {
-  const Point2& a = boundary_.position[at(master)];
-  const Point2 edge = boundary_.position[at(boundary_.next[at(master)])] - a;
-  // Not clamped to the edge: a slave that has moved past the end of its master edge within
-  // the step keeps its true offset (a clamped anchor would load the shear spring with a
-  // displacement that never happened).
-  return (x - a).dot(edge) / edge.squaredNorm();
-}
-
-template <class AnchorOf>
-void ContactSystem::place(Group& g, double from, double to, const AnchorOf& anchor_of) {
-  g.from = from;
-  g.to = to;
-  const ContactPoint& lead = points_[at(g.first)];
-  const Point2& a = boundary_.position[at(lead.slave_edge)];
-  const Point2& d = boundary_.position[at(boundary_.next[at(lead.slave_edge)])];
-  // Lengths along the master (the projection of the part), so that a pair of parallel
-  // edges integrates exactly as one joint element (Goodman).
-  const double span = std::abs(g.t_next - g.t_first) * (to - from);
-  const double alpha = options_.penalty / options_.spring_length;
-  for (int q = 0; q < g.count; ++q) {
-    ContactPoint& p = points_[at(g.first + q)];
-    const double xi = gauss_ == 2 ? xi2[at(q)] : xi3[at(q)];
-    const double w = gauss_ == 2 ? w2[at(q)] : w3[at(q)];
-    p.u = from + (to - from) * xi;
-    p.slave = a + p.u * (d - a);
-    p.length = w * span;
-    p.stiffness = alpha * p.length;
-    p.anchor = anchor_of(p.u, p.slave);
-  }
-}
-
-double LiftOffEnd::next(double now, double wanted, double negligible) {
-  const double g = wanted - now;
-  if (g == 0.0)
-    return now;
-  if (!bracketed) {
-    if (g * moved >= 0.0) {
-      moved = g;
-      return wanted;
-    }
-    // The move went back: the root lies between the place before the last move (which
-    // wanted the end where the move took it) and this one.
-    bracketed = true;
-    a = now - moved;
-    ga = moved;
-    b = now;
-    gb = g;
-    kept = 0;
-  } else if (g * ga > 0.0) {
-    a = now;
-    ga = g;
-    if (kept == +1)
-      gb *= 0.5; // Illinois: an end kept twice counts half, so the bracket shrinks from it too
-    kept = +1;
-  } else {
-    b = now;
-    gb = g;
-    if (kept == -1)
-      ga *= 0.5;
-    kept = -1;
-  }
-  if (std::abs(b - a) < negligible) {
-    bracketed = false;
-    moved = g;
-    return wanted;
-  }
-  const double place = a - ga * (b - a) / (gb - ga);
-  moved = place - now;
-  return place;
 }
 
 ContactBoundary contact_boundary(const Model& model) {
@@ -289,19 +63,7 @@ ContactBoundary contact_boundary(const Model& model) {
 
 void ContactSystem::begin_step(const Model& model, double max_step_displacement) {
   coupled_friction_ = false;
-  // The boundary at the start of the step, and what each edge carries.
-  boundary_ = contact_boundary(model);
-  edge_element_.clear();
-  edge_strength_.clear();
-  edge_bonded_.clear();
-  for (std::size_t l = 0; l < model.loops.size(); ++l) {
-    const BoundaryLoop& loop = model.loops[l];
-    for (int k = 0; k < loop.n_vertices(); ++k) {
-      edge_element_.push_back(loop.edges[at(k)].element);
-      edge_strength_.push_back(strength_of_edge_[l][at(k)]);
-      edge_bonded_.push_back(bonded_edge_[l][at(k)] ? 1 : 0);
-    }
-  }
+  set_up_boundary(model);
   DetectionOptions detection = options_.detection;
   detection.distance = 2.0 * max_step_displacement;
   detection.penetration = 0.1 * detection.distance;
@@ -318,88 +80,7 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   const std::vector<ContactCandidate> candidates =
       detect_contacts(boundary_, detection, keep, &counters_.detection);
 
-  // Contacts found by the slave or the master of a carried contact, for the transfer of a
-  // contact whose slave moved on to the next edge (Shi 3.3): (edge, key, state) sorted by
-  // edge, and for one edge by decreasing key (the order an std::unordered_multimap filled in
-  // increasing key order gave, which decides between two candidates for a transfer: kept so
-  // that the runs stay what they were). A counting sort by edge of the keys taken in
-  // decreasing order (keep increases): building both lists with std::sort took 4 ms a step
-  // for the 60,000 contacts carried by 10,004 blocks.
-  struct ByEdge {
-    int edge;
-    std::uint64_t key;
-    const Carried* state;
-  };
-  std::vector<const Carried*> states;
-  states.reserve(keep.size());
-  int n_edges = 0;
-  for (const std::uint64_t key : keep) {
-    states.push_back(carried_at(key));
-    NMM_ASSERT(states.back()->slave >= 0 && states.back()->master >= 0,
-               "a carried contact has its two edges");
-    n_edges = std::max({n_edges, states.back()->slave + 1, states.back()->master + 1});
-  }
-  auto sorted_by_edge = [&](auto edge_of) {
-    std::vector<int> start(at(n_edges) + 1, 0);
-    for (const Carried* state : states)
-      ++start[at(edge_of(*state)) + 1];
-    std::partial_sum(start.begin(), start.end(), start.begin());
-    std::vector<ByEdge> list(keep.size());
-    for (std::size_t i = keep.size(); i-- > 0;) {
-      const int edge = edge_of(*states[i]);
-      list[at(start[at(edge)]++)] = {edge, keep[i], states[i]};
-    }
-    return list;
-  };
-  const std::vector<ByEdge> carried_by_slave =
-      sorted_by_edge([](const Carried& state) { return state.slave; });
-  const std::vector<ByEdge> carried_by_master =
-      sorted_by_edge([](const Carried& state) { return state.master; });
-  auto on_edge = [](const std::vector<ByEdge>& list, int edge) {
-    const auto first = std::lower_bound(list.begin(), list.end(), edge,
-                                        [](const ByEdge& e, int value) { return e.edge < value; });
-    auto last = first;
-    while (last != list.end() && last->edge == edge)
-      ++last;
-    return std::span<const ByEdge>(first, last);
-  };
-  // The carried state of the contact of @p slave against @p master: the one stored under
-  // the same key, or another that had the same slave and master (an angle-to-angle contact
-  // whose candidate changed), or else one whose slave moved on from an adjacent master
-  // (Shi 3.3); *identical tells whether its anchors and offset refer to this pair.
-  auto carried_state = [&](std::uint64_t key, int slave, int master, bool edge,
-                           bool* identical) -> const Carried* {
-    *identical = false;
-    auto adjacent = [&](int e, int f) {
-      return boundary_.next[at(e)] == f || boundary_.next[at(f)] == e;
-    };
-    const Carried* moved = nullptr;
-    if (const Carried* same = carried_at(key); same != nullptr) {
-      *identical = same->slave == slave && same->master == master;
-      if (*identical || !closed(same->mode))
-        return same;
-      moved = same; // the same contact on its other entrance line
-    }
-    for (const ByEdge& e : on_edge(carried_by_slave, slave)) {
-      const Carried& state = *e.state;
-      if (!closed(state.mode) || is_edge_pair(e.key) != edge)
-        continue;
-      if (state.master == master) {
-        *identical = true;
-        return &state;
-      }
-      if (moved == nullptr && adjacent(state.master, master))
-        moved = &state;
-    }
-    if (moved != nullptr || !edge)
-      return moved;
-    for (const ByEdge& e : on_edge(carried_by_master, master)) {
-      const Carried& state = *e.state;
-      if (closed(state.mode) && is_edge_pair(e.key) && adjacent(state.slave, slave))
-        return &state;
-    }
-    return nullptr;
-  };
+  const CarriedByEdge carried = carried_by_edge(keep);
   // Angle contacts already made, by (vertex, entrance line): two candidates can end on the
   // same pair (an angle-to-edge contact and an angle-to-angle one whose line is that edge),
   // and one spring is all the pair may have.
@@ -410,168 +91,8 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   gauss_ = model.order == 0 ? 2 : 3;
   std::vector<double> g0; // per candidate: its gap at the start of the step (kept storage)
   std::vector<std::pair<double, double>> offsets; // per candidate: a carried lock's anchors
-  for (const ContactCandidate& c : candidates) {
-    Group g;
-    g.key = c.key();
-    g.edge = c.kind == ContactKind::edge_edge;
-    g.first = n_points();
-    ContactPoint p;
-    p.key = g.key;
-    p.slave_edge = c.slave;
-    p.master = c.master;
-    if (!g.edge && c.alternative_master >= 0) {
-      // Two convex angles (Shi 3.2 [1]): they penetrate only when both entrance lines are
-      // passed, so the spring goes on the line with the smaller passing distance: the larger
-      // signed distance at the start of the step (outside positive). That is the line still
-      // to be passed, or, when both are, the shortest way out. The other line can have been
-      // passed long ago: a block tip that slid past a corner leaves the corner far behind
-      // the tip's other face, and a spring there pushed the corner out through the whole
-      // block (1e3 m/s in one step; test Incline.SharpTipSlidesPastTheCorner...). Chosen
-      // once here, so that the springs, the anchor and its transfer all refer to one edge.
-      const auto distance = [&](int vertex, int edge) {
-        const Point2& a = boundary_.position[at(edge)];
-        const Point2& b = boundary_.position[at(boundary_.next[at(edge)])];
-        return (boundary_.position[at(vertex)] - a).dot(perp(b - a)) / (b - a).norm();
-      };
-      if (distance(c.alternative_slave, c.alternative_master) > distance(c.slave, c.master)) {
-        p.slave_edge = c.alternative_slave;
-        p.master = c.alternative_master;
-      }
-    }
-    if (!g.edge && !angle_pairs.insert(static_cast<std::uint64_t>(at(p.slave_edge)) << 32U |
-                                       static_cast<std::uint64_t>(at(p.master))))
-      continue;
-    const Point2& ma = boundary_.position[at(p.master)];
-    const Point2& mb = boundary_.position[at(boundary_.next[at(p.master)])];
-    const Point2 tangent = (mb - ma).normalized();
-    const Point2 normal = perp(mb - ma).normalized();
-    g0.clear(); // gap at the start of the step: at the point, or along the overlap
-    if (!g.edge) {
-      const int v = p.slave_edge;
-      p.slave = boundary_.position[at(v)];
-      // Half of the vertex's two edges (Shi), or none at the end of an edge-to-edge contact
-      // that represents that face already (docs/formulation.md, "Joint strength").
-      p.length = c.end_face >= 0
-                     ? 0.0
-                     : 0.5 * ((boundary_.position[at(boundary_.next[at(v)])] - p.slave).norm() +
-                              (boundary_.position[at(boundary_.previous[at(v)])] - p.slave).norm());
-      p.stiffness = options_.penalty;
-      p.strength =
-          weaker(weaker(edge_strength_[at(v)], edge_strength_[at(boundary_.previous[at(v)])]),
-                 edge_strength_[at(p.master)]);
-      // A corner at the end of a bonded face belongs to that face's bond (it holds no length
-      // of its own, so no strength either: its spring yields with friction alone).
-      p.bonded = c.end_face >= 0
-                     ? edge_bonded_[at(c.end_face)] != 0 && edge_bonded_[at(c.end_beyond)] != 0
-                     : edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
-      g.count = 1;
-      points_.push_back(p);
-      g0.push_back((p.slave - ma).dot(normal));
-    } else {
-      // The overlap of the slave edge's projection on the master, as slave parameters.
-      const Point2& a = boundary_.position[at(c.slave)];
-      const Point2& d = boundary_.position[at(boundary_.next[at(c.slave)])];
-      const double length = (mb - ma).norm();
-      g.t_first = (a - ma).dot(tangent);
-      g.t_next = (d - ma).dot(tangent);
-      const double t_lo = std::max(0.0, std::min(g.t_first, g.t_next));
-      const double t_hi = std::min(length, std::max(g.t_first, g.t_next));
-      if (t_hi - t_lo <= touching_end * length) // as in the detection: an end that only touches
-        continue;
-      const double u1 = (t_lo - g.t_first) / (g.t_next - g.t_first);
-      const double u2 = (t_hi - g.t_first) / (g.t_next - g.t_first);
-      g.lo = std::clamp(std::min(u1, u2), 0.0, 1.0);
-      g.hi = std::clamp(std::max(u1, u2), 0.0, 1.0);
-      p.strength = weaker(edge_strength_[at(c.slave)], edge_strength_[at(c.master)]);
-      p.bonded = edge_bonded_[at(c.slave)] != 0 && edge_bonded_[at(c.master)] != 0;
-      g.count = gauss_;
-      for (int q = 0; q < gauss_; ++q) {
-        points_.push_back(p);
-      }
-      for (const double u : {g.lo, g.hi})
-        g0.push_back((a + u * (d - a) - ma).dot(normal));
-    }
-    ContactPoint& lead = points_[at(g.first)];
-    if (broken_.count(g.key) != 0 || broken_.count(interface_key(p.slave_edge, p.master)) != 0) {
-      for (int q = 0; q < g.count; ++q)
-        points_[at(g.first + q)].bonded = false;
-    }
-    // The state at the start of the step (Shi 3.3): carried, taken over from the contact
-    // the slave moved on from, or new. An intact joint, and a contact already touching,
-    // start locked (not open for one free-flight iteration: that would take a whole step's
-    // worth of penetration first). A contact takes over another pair's closed mode only
-    // where it touches: a slave that moved on presses on its new master, but a pair that
-    // merely lies beside a closed one (the next piece of a sliding block's underside, with a
-    // gap) is no continuation of it. Closed from the start it pulled, opened in the first
-    // solve and was taken over again the next step: on examples/03 a refactorisation every
-    // step at 40 E, and 96 step cuts in 200 steps at 100 E (2 now).
-    bool same = false;
-    const Carried* state = carried_state(g.key, p.slave_edge, p.master, g.edge, &same);
-    const bool touching = *std::min_element(g0.begin(), g0.end()) <= rounding_;
-    ContactMode mode = ContactMode::open;
-    int sign = 0;
-    double normal_force = 0.0;
-    if (state != nullptr && (same || touching)) {
-      mode = state->mode;
-      sign = state->slide_sign;
-      normal_force = same ? state->normal : 0.0;
-    } else if (lead.bonded || touching) {
-      mode = ContactMode::lock;
-    }
-    if (!g.edge) {
-      // The springs' zero (ContactPoint::offset): a new contact's penetration; a carried one
-      // keeps its own; one taken over from the slave's last edge keeps that one's unless it
-      // now penetrates less.
-      lead.offset = std::min(0.0, g0.front());
-      if (same)
-        lead.offset = state->offset;
-      else if (state != nullptr)
-        lead.offset = std::max(state->offset, lead.offset);
-    }
-    // A lock carried on the same pair keeps its anchors (material points of the master), as
-    // shear offsets from where its slave points are now; otherwise it anchors where the slave
-    // is now, on its own entrance line (not the candidate's: an angle-to-angle contact's
-    // spring may be on the alternative line, and an anchor measured along the other edge put
-    // millimetres of shear into the spring).
-    offsets.clear();
-    if (same) {
-      const Point2& a = boundary_.position[at(p.slave_edge)];
-      const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
-      for (const auto& [u, anchor] : anchors_of(*state)) {
-        const Point2 slave = g.edge ? Point2(a + u * (d - a)) : a;
-        offsets.emplace_back(u, anchor - projection(p.master, slave));
-      }
-    }
-    auto anchor_of = [&](double u, const Point2& slave) {
-      return projection(p.master, slave) + (same ? offset_at(offsets, u) : 0.0);
-    };
-    if (g.edge) {
-      // Springs where the edges press on each other; all along an intact joint.
-      double from = g.lo;
-      double to = g.hi;
-      if (closed(mode) && !lead.bonded) {
-        if (const Part part = GapProfile(g.lo, g.hi, g0).negative(); part.found) {
-          from = part.from;
-          to = part.to;
-        }
-      }
-      place(g, from, to, anchor_of);
-    } else {
-      lead.anchor = anchor_of(0.0, lead.slave);
-    }
-    const double total = group_stiffness(g);
-    for (int q = 0; q < g.count; ++q) {
-      ContactPoint& point = points_[at(g.first + q)];
-      point.mode = mode;
-      point.slide_sign = sign;
-      point.flips = 0;
-      point.slips = 0;
-      point.normal_force = total > 0.0 ? normal_force * point.stiffness / total : 0.0;
-      point.shear_force = 0.0;
-      point.gap = 0.0;
-    }
-    groups_.push_back(g);
-  }
+  for (const ContactCandidate& c : candidates)
+    add_contact(c, carried, angle_pairs, g0, offsets);
   counters_.points += static_cast<long>(points_.size());
   last_changed_ = 0;
   holds_ = {};
@@ -581,6 +102,221 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
   // at 10,004 blocks).
   ++kinematics_stamp_;
   kinematics_cache_.resize(points_.size() + 3 * groups_.size());
+  set_up_shapes(model);
+}
+
+void ContactSystem::set_up_boundary(const Model& model) {
+  // The boundary at the start of the step, and what each edge carries.
+  boundary_ = contact_boundary(model);
+  edge_element_.clear();
+  edge_strength_.clear();
+  edge_bonded_.clear();
+  for (std::size_t l = 0; l < model.loops.size(); ++l) {
+    const BoundaryLoop& loop = model.loops[l];
+    for (int k = 0; k < loop.n_vertices(); ++k) {
+      edge_element_.push_back(loop.edges[at(k)].element);
+      edge_strength_.push_back(law_->surface(l, at(k)));
+      edge_bonded_.push_back(law_->is_bonded(l, at(k)) ? 1 : 0);
+    }
+  }
+}
+
+void ContactSystem::choose_entrance_line(const ContactCandidate& c, ContactPoint& p) const {
+  // Two convex angles (Shi 3.2 [1]): they penetrate only when both entrance lines are
+  // passed, so the spring goes on the line with the smaller passing distance: the larger
+  // signed distance at the start of the step (outside positive). That is the line still
+  // to be passed, or, when both are, the shortest way out. The other line can have been
+  // passed long ago: a block tip that slid past a corner leaves the corner far behind
+  // the tip's other face, and a spring there pushed the corner out through the whole
+  // block (1e3 m/s in one step; test Incline.SharpTipSlidesPastTheCorner...). Chosen
+  // once here, so that the springs, the anchor and its transfer all refer to one edge.
+  const auto distance = [&](int vertex, int edge) {
+    const Point2& a = boundary_.position[at(edge)];
+    const Point2& b = boundary_.position[at(boundary_.next[at(edge)])];
+    return (boundary_.position[at(vertex)] - a).dot(perp(b - a)) / (b - a).norm();
+  };
+  if (distance(c.alternative_slave, c.alternative_master) > distance(c.slave, c.master)) {
+    p.slave_edge = c.alternative_slave;
+    p.master = c.alternative_master;
+  }
+}
+
+void ContactSystem::add_contact(const ContactCandidate& c,
+                                const CarriedByEdge& carried,
+                                KeySet& angle_pairs,
+                                std::vector<double>& g0,
+                                std::vector<std::pair<double, double>>& offsets) {
+  Group g;
+  g.key = c.key();
+  g.edge = c.kind == ContactKind::edge_edge;
+  g.first = n_points();
+  ContactPoint p;
+  p.key = g.key;
+  p.slave_edge = c.slave;
+  p.master = c.master;
+  if (!g.edge && c.alternative_master >= 0)
+    choose_entrance_line(c, p);
+  if (!g.edge && !angle_pairs.insert(static_cast<std::uint64_t>(at(p.slave_edge)) << 32U |
+                                     static_cast<std::uint64_t>(at(p.master))))
+    return;
+  g0.clear(); // gap at the start of the step: at the point, or along the overlap
+  if (!g.edge)
+    add_angle_point(c, g, p, g0);
+  else if (!add_edge_points(c, g, p, g0))
+    return;
+  start_contact(g, p, carried, g0, offsets);
+  groups_.push_back(g);
+}
+
+void ContactSystem::add_angle_point(const ContactCandidate& c,
+                                    Group& g,
+                                    ContactPoint& p,
+                                    std::vector<double>& g0) {
+  const Point2& ma = boundary_.position[at(p.master)];
+  const Point2& mb = boundary_.position[at(boundary_.next[at(p.master)])];
+  const Point2 normal = perp(mb - ma).normalized();
+  const int v = p.slave_edge;
+  p.slave = boundary_.position[at(v)];
+  // Half of the vertex's two edges (Shi), or none at the end of an edge-to-edge contact
+  // that represents that face already (docs/formulation.md, "Joint strength").
+  p.length = c.end_face >= 0
+                 ? 0.0
+                 : 0.5 * ((boundary_.position[at(boundary_.next[at(v)])] - p.slave).norm() +
+                          (boundary_.position[at(boundary_.previous[at(v)])] - p.slave).norm());
+  p.stiffness = options_.penalty;
+  p.strength = law_->contact_strength(
+      law_->contact_strength(edge_strength_[at(v)], edge_strength_[at(boundary_.previous[at(v)])]),
+      edge_strength_[at(p.master)]);
+  // A corner at the end of a bonded face belongs to that face's bond (it holds no length
+  // of its own, so no strength either: its spring yields with friction alone).
+  p.bonded = c.end_face >= 0
+                 ? edge_bonded_[at(c.end_face)] != 0 && edge_bonded_[at(c.end_beyond)] != 0
+                 : edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
+  g.count = 1;
+  points_.push_back(p);
+  g0.push_back((p.slave - ma).dot(normal));
+}
+
+bool ContactSystem::add_edge_points(const ContactCandidate& c,
+                                    Group& g,
+                                    ContactPoint& p,
+                                    std::vector<double>& g0) {
+  const Point2& ma = boundary_.position[at(p.master)];
+  const Point2& mb = boundary_.position[at(boundary_.next[at(p.master)])];
+  const Point2 tangent = (mb - ma).normalized();
+  const Point2 normal = perp(mb - ma).normalized();
+  // The overlap of the slave edge's projection on the master, as slave parameters.
+  const Point2& a = boundary_.position[at(c.slave)];
+  const Point2& d = boundary_.position[at(boundary_.next[at(c.slave)])];
+  const double length = (mb - ma).norm();
+  g.t_first = (a - ma).dot(tangent);
+  g.t_next = (d - ma).dot(tangent);
+  const double t_lo = std::max(0.0, std::min(g.t_first, g.t_next));
+  const double t_hi = std::min(length, std::max(g.t_first, g.t_next));
+  if (t_hi - t_lo <= touching_end * length) // as in the detection: an end that only touches
+    return false;
+  const double u1 = (t_lo - g.t_first) / (g.t_next - g.t_first);
+  const double u2 = (t_hi - g.t_first) / (g.t_next - g.t_first);
+  g.lo = std::clamp(std::min(u1, u2), 0.0, 1.0);
+  g.hi = std::clamp(std::max(u1, u2), 0.0, 1.0);
+  p.strength = law_->contact_strength(edge_strength_[at(c.slave)], edge_strength_[at(c.master)]);
+  p.bonded = edge_bonded_[at(c.slave)] != 0 && edge_bonded_[at(c.master)] != 0;
+  g.count = gauss_;
+  for (int q = 0; q < gauss_; ++q) {
+    points_.push_back(p);
+  }
+  for (const double u : {g.lo, g.hi})
+    g0.push_back((a + u * (d - a) - ma).dot(normal));
+  return true;
+}
+
+void ContactSystem::start_contact(Group& g,
+                                  const ContactPoint& p,
+                                  const CarriedByEdge& carried,
+                                  const std::vector<double>& g0,
+                                  std::vector<std::pair<double, double>>& offsets) {
+  ContactPoint& lead = points_[at(g.first)];
+  if (broken_.count(g.key) != 0 || broken_.count(interface_key(p.slave_edge, p.master)) != 0) {
+    for (int q = 0; q < g.count; ++q)
+      points_[at(g.first + q)].bonded = false;
+  }
+  // The state at the start of the step (Shi 3.3): carried, taken over from the contact
+  // the slave moved on from, or new. An intact joint, and a contact already touching,
+  // start locked (not open for one free-flight iteration: that would take a whole step's
+  // worth of penetration first). A contact takes over another pair's closed mode only
+  // where it touches: a slave that moved on presses on its new master, but a pair that
+  // merely lies beside a closed one (the next piece of a sliding block's underside, with a
+  // gap) is no continuation of it. Closed from the start it pulled, opened in the first
+  // solve and was taken over again the next step: on examples/03 a refactorisation every
+  // step at 40 E, and 96 step cuts in 200 steps at 100 E (2 now).
+  bool same = false;
+  const Carried* state = carried_state(carried, g.key, p.slave_edge, p.master, g.edge, &same);
+  const bool touching = *std::min_element(g0.begin(), g0.end()) <= rounding_;
+  ContactMode mode = ContactMode::open;
+  int sign = 0;
+  double normal_force = 0.0;
+  if (state != nullptr && (same || touching)) {
+    mode = state->mode;
+    sign = state->slide_sign;
+    normal_force = same ? state->normal : 0.0;
+  } else if (lead.bonded || touching) {
+    mode = ContactMode::lock;
+  }
+  if (!g.edge) {
+    // The springs' zero (ContactPoint::offset): a new contact's penetration; a carried one
+    // keeps its own; one taken over from the slave's last edge keeps that one's unless it
+    // now penetrates less.
+    lead.offset = std::min(0.0, g0.front());
+    if (same)
+      lead.offset = state->offset;
+    else if (state != nullptr)
+      lead.offset = std::max(state->offset, lead.offset);
+  }
+  // A lock carried on the same pair keeps its anchors (material points of the master), as
+  // shear offsets from where its slave points are now; otherwise it anchors where the slave
+  // is now, on its own entrance line (not the candidate's: an angle-to-angle contact's
+  // spring may be on the alternative line, and an anchor measured along the other edge put
+  // millimetres of shear into the spring).
+  offsets.clear();
+  if (same) {
+    const Point2& a = boundary_.position[at(p.slave_edge)];
+    const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
+    for (const auto& [u, anchor] : anchors_of(*state)) {
+      const Point2 slave = g.edge ? Point2(a + u * (d - a)) : a;
+      offsets.emplace_back(u, anchor - projection(p.master, slave));
+    }
+  }
+  auto anchor_of = [&](double u, const Point2& slave) {
+    return projection(p.master, slave) + (same ? offset_at(offsets, u) : 0.0);
+  };
+  if (g.edge) {
+    // Springs where the edges press on each other; all along an intact joint.
+    double from = g.lo;
+    double to = g.hi;
+    if (closed(mode) && !lead.bonded) {
+      if (const OverlapPart part = GapProfile(g.lo, g.hi, g0).negative(); part.found) {
+        from = part.from;
+        to = part.to;
+      }
+    }
+    place(g, from, to, same ? &offsets : nullptr);
+  } else {
+    lead.anchor = anchor_of(0.0, lead.slave);
+  }
+  const double total = group_stiffness(g);
+  for (int q = 0; q < g.count; ++q) {
+    ContactPoint& point = points_[at(g.first + q)];
+    point.mode = mode;
+    point.slide_sign = sign;
+    point.flips = 0;
+    point.slips = 0;
+    point.normal_force = total > 0.0 ? normal_force * point.stiffness / total : 0.0;
+    point.shear_force = 0.0;
+    point.gap = 0.0;
+  }
+}
+
+void ContactSystem::set_up_shapes(const Model& model) {
   shapes_.clear();
   shape_of_element_.assign(static_cast<std::size_t>(model.n_elements()), -1);
   for (const ContactPoint& p : points_) {
@@ -592,52 +328,6 @@ void ContactSystem::begin_step(const Model& model, double max_step_displacement)
       }
     }
   }
-}
-
-void ContactSystem::save(State& state) const {
-  state.groups = groups_;
-  state.points = points_;
-  state.broken = broken_;
-  state.bonds_broken = counters_.bonds_broken;
-  state.holds = holds_;
-}
-
-void ContactSystem::restore(const State& state) {
-  groups_ = state.groups;
-  points_ = state.points;
-  broken_ = state.broken;
-  counters_.bonds_broken = state.bonds_broken;
-  holds_ = state.holds;
-  last_changed_ = 0;
-}
-
-void ContactSystem::restart_step() {
-  restore(start_);
-  has_converged_ = false;
-  set_hold_shear(hold_shear_);
-}
-
-bool ContactSystem::back_to_converged(Eigen::VectorXd& raw) {
-  // Only a solve that nearly met the tolerance: a deeper one (a landing impact the passes
-  // could not hold) is better cut, which shortens the impact's step (the 1000-block pile:
-  // falling back on any, its deepest contact was 2.0 mm instead of 0.52 mm).
-  if (!has_converged_ || converged_penetration_ > fallback_depth * options_.penetration_tolerance)
-    return false;
-  back_to_kept(raw);
-  return true;
-}
-
-void ContactSystem::back_to_kept(Eigen::VectorXd& raw) {
-  restore(converged_);
-  raw = converged_raw_;
-  has_converged_ = false;
-}
-
-const ElementShape& ContactSystem::shape(int element) const {
-  NMM_ASSERT(element >= 0 && at(element) < shape_of_element_.size() &&
-                 shape_of_element_[at(element)] >= 0,
-             "no shape built for this element in begin_step()");
-  return shapes_[at(shape_of_element_[at(element)])];
 }
 
 void ContactSystem::set_dynamic(bool dynamic) { dynamic_ = dynamic; }
@@ -652,786 +342,6 @@ void ContactSystem::set_hold_shear(bool hold) {
       p.anchor = projection(p.master, p.slave);
     }
   }
-}
-
-void ContactSystem::kinematics(const Model& model,
-                               const ContactPoint& p,
-                               Kinematics& k,
-                               KinematicsWork& work) const {
-  const int slave_edge = p.slave_edge;
-  const int master = p.master;
-  const Point2& slave = p.slave;
-  const int slave_element = edge_element_[at(slave_edge)];
-  const int master_element = edge_element_[at(master)];
-  const std::span<const int> slave_dofs = model.element_dofs(slave_element);
-  const std::span<const int> master_dofs = model.element_dofs(master_element);
-  const ElementShape& slave_shape = shape(slave_element);
-  const ElementShape& master_shape = shape(master_element);
-  const Point2& slave_a = boundary_.position[at(slave_edge)];
-  const Point2& slave_b = boundary_.position[at(boundary_.next[at(slave_edge)])];
-  const Point2& a = boundary_.position[at(master)];
-  const Point2& b = boundary_.position[at(boundary_.next[at(master)])];
-  const double l = (b - a).norm();
-  const Point2 tangent = (b - a) / l;
-  const Point2 normal = perp(b - a) / l;
-  // The terms T_element(x)^T c of the gap (hn) and of the shear (hs), on the slave's unknowns
-  // (x on the slave edge's line) or the master's (x on the master edge's line).
-  // Normal gap (material on the left of a -> b; positive on the void side):
-  // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
-  // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
-  k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset - p.shift;
-  struct Term {
-    Point2 x;
-    Point2 c;
-  };
-  std::array<Term, 5> master_normal{};
-  std::size_t n_master_normal = 0;
-  master_normal[n_master_normal++] = {a, perp(slave - b) / l};
-  master_normal[n_master_normal++] = {b, Point2(-perp(slave - a) / l)};
-  if (model.order >= 1 && master_shape.nmm() != nullptr) {
-    // The master terms above move the foot of the slave point, A + t (B - A), with the
-    // straight line through the moved ends A and B: exact for a straight edge (order 0, DDA,
-    // VEM). An order-1 edge bends (its displacement is quadratic along it); the foot moves
-    // with the master's own field there: n . (T(foot) - (1 - t) T(A) - t T(B)) d less gap.
-    const double foot = (slave - a).dot(b - a) / (l * l);
-    master_normal[n_master_normal++] = {a + foot * (b - a), Point2(-normal)};
-    master_normal[n_master_normal++] = {a, (1.0 - foot) * normal};
-    master_normal[n_master_normal++] = {b, foot * normal};
-  }
-  // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
-  const Point2 anchor = a + p.anchor * (b - a);
-  k.s0 = (slave - anchor).dot(tangent);
-  const Term master_shear{anchor, Point2(-tangent)};
-  PointInterpolation& t = work.t;
-  std::vector<int>& columns = work.columns;
-  k.dofs.clear();
-  // The unknowns the point's terms involve, each at the position of its first use: the
-  // slave element's first (all of an NMM element's or a DDA block's, a VEM block's slave
-  // edge's two vertices), then the master's that the slave does not have. They depend on
-  // the point's edges only, not on where it sits along them: the step's sparsity pattern
-  // and plans are made with them at its start (point_dofs()).
-  //
-  // Two elements whose unknowns are apart (two blocks; NMM elements on either side of a
-  // joint, mostly): the master's follow the slave's, in the order of the columns of their
-  // interpolations, which are those of the edge for every point on its line. An element's
-  // own unknowns are distinct. The same sums in the same order as below (from a zero, as
-  // there), without looking up any unknown: the 70-block wall's kinematics take 0.11 ms a
-  // step instead of 0.19.
-  const auto [slave_min, slave_max] = std::ranges::minmax(slave_dofs);
-  const auto [master_min, master_max] = std::ranges::minmax(master_dofs);
-  if (slave_max < master_min || master_max < slave_min) {
-    slave_shape.interpolation_on_edge(slave, slave_a, slave_b, t, columns);
-    const auto ns = static_cast<Eigen::Index>(columns.size());
-    for (const int column : columns)
-      k.dofs.push_back(slave_dofs[at(column)]);
-    std::vector<int>& master_columns = work.master_columns;
-    // The columns of the master's interpolation, at the first master term's point.
-    master_shape.interpolation_on_edge(master_normal[0].x, a, b, work.t_master, master_columns);
-    const auto nm = static_cast<Eigen::Index>(master_columns.size());
-    for (const int column : master_columns)
-      k.dofs.push_back(master_dofs[at(column)]);
-    k.hn.resize(ns + nm);
-    k.hs.resize(ns + nm);
-    for (Eigen::Index j = 0; j < ns; ++j) {
-      k.hn(j) = 0.0 + (t(0, j) * normal.x() + t(1, j) * normal.y());
-      k.hs(j) = 0.0 + (t(0, j) * tangent.x() + t(1, j) * tangent.y());
-    }
-    auto add_master = [&](Eigen::Ref<Eigen::VectorXd> h, const Term& term, bool first) {
-      if (!first)
-        master_shape.interpolation_on_edge(term.x, a, b, work.t_master, columns);
-      NMM_ASSERT(first || columns == master_columns,
-                 "every point on an edge's line has the edge's columns");
-      const PointInterpolation& tm = work.t_master;
-      for (Eigen::Index j = 0; j < nm; ++j)
-        h(j) += tm(0, j) * term.c.x() + tm(1, j) * term.c.y();
-    };
-    k.hn.tail(nm).setZero();
-    k.hs.tail(nm).setZero();
-    for (std::size_t q = 0; q < n_master_normal; ++q)
-      add_master(k.hn.tail(nm), master_normal[q], q == 0);
-    add_master(k.hs.tail(nm), master_shear, false);
-    return;
-  }
-  // Otherwise each unknown is looked up where it is first used: local[c] for the slave's
-  // column c, local[slave size + c] for the master's (-1: not used yet).
-  const std::size_t bound = slave_dofs.size() + master_dofs.size();
-  std::vector<double>& hn = work.hn;
-  std::vector<double>& hs = work.hs;
-  hn.assign(bound, 0.0);
-  hs.assign(bound, 0.0);
-  std::vector<Eigen::Index>& local = work.local;
-  local.assign(bound, -1);
-  // Adds T_element(x)^T c to hn (or hs if @p shear), on the slave's unknowns or the master's.
-  auto add = [&](bool shear, bool on_master, const Term& term) {
-    if (on_master)
-      master_shape.interpolation_on_edge(term.x, a, b, t, columns);
-    else
-      slave_shape.interpolation_on_edge(term.x, slave_a, slave_b, t, columns);
-    const std::span<const int> dofs = on_master ? master_dofs : slave_dofs;
-    const std::size_t offset = on_master ? slave_dofs.size() : 0;
-    std::vector<double>& h = shear ? hs : hn;
-    for (std::size_t j = 0; j < columns.size(); ++j) {
-      const std::size_t column = at(columns[j]);
-      NMM_ASSERT(column < dofs.size(), "an element's interpolation has a column per unknown");
-      Eigen::Index& position = local[offset + column];
-      if (position < 0) { // an unknown the other element may have used already
-        const auto found = std::find(k.dofs.begin(), k.dofs.end(), dofs[column]);
-        position = found - k.dofs.begin();
-        if (found == k.dofs.end())
-          k.dofs.push_back(dofs[column]);
-      }
-      const auto col = static_cast<Eigen::Index>(j);
-      h[static_cast<std::size_t>(position)] += t(0, col) * term.c.x() + t(1, col) * term.c.y();
-    }
-  };
-  add(false, false, {slave, normal});
-  for (std::size_t q = 0; q < n_master_normal; ++q)
-    add(false, true, master_normal[q]);
-  add(true, false, {slave, tangent});
-  add(true, true, master_shear);
-  // Cut to the unknowns used (fewer than bound on a VEM block's edge, or where the elements
-  // share unknowns).
-  const auto n = static_cast<Eigen::Index>(k.dofs.size());
-  k.hn = Eigen::Map<const Eigen::VectorXd>(hn.data(), n);
-  k.hs = Eigen::Map<const Eigen::VectorXd>(hs.data(), n);
-}
-
-const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& model,
-                                                                  const ContactPoint& p,
-                                                                  std::size_t slot) const {
-  return cached_kinematics(model, p, slot, work_);
-}
-
-const ContactSystem::Kinematics& ContactSystem::cached_kinematics(const Model& model,
-                                                                  const ContactPoint& p,
-                                                                  std::size_t slot,
-                                                                  KinematicsWork& work) const {
-  NMM_ASSERT(slot < kinematics_cache_.size(), "a kinematics slot of this step");
-  CachedKinematics& c = kinematics_cache_[slot];
-  if (c.stamp != kinematics_stamp_ || c.slave_edge != p.slave_edge || c.master != p.master ||
-      c.slave != p.slave || c.anchor != p.anchor || c.offset != p.offset || c.shift != p.shift) {
-    kinematics(model, p, c.kinematics, work);
-    c.stamp = kinematics_stamp_;
-    c.slave_edge = p.slave_edge;
-    c.master = p.master;
-    c.slave = p.slave;
-    c.anchor = p.anchor;
-    c.offset = p.offset;
-    c.shift = p.shift;
-  }
-  return c.kinematics;
-}
-
-// Each slot is written by the one chunk its point or group is in, each chunk with its own
-// workspace: the kinematics are what the calls one by one compute, on any number of threads.
-// At 10,004 DDA blocks they are a tenth of a step.
-void ContactSystem::prepare_kinematics(const Model& model) const {
-  works_.resize(static_cast<std::size_t>(worker_threads()));
-  const std::size_t min_chunk = options_.parallel_min_chunk;
-  parallel_for(points_.size(), min_chunk, [&](std::size_t first, std::size_t last, int chunk) {
-    for (std::size_t i = first; i < last; ++i)
-      static_cast<void>(cached_kinematics(model, points_[i], i, works_[at(chunk)]));
-  });
-  parallel_for(groups_.size(), min_chunk, [&](std::size_t first, std::size_t last, int chunk) {
-    for (std::size_t k = first; k < last; ++k) {
-      const Group& g = groups_[k];
-      if (!g.edge)
-        continue;
-      const std::vector<std::pair<double, double>> shifts = shifts_of(g);
-      for (int sample = 0; sample < 3; ++sample) {
-        if (sample != 1 || gauss_ == 3)
-          static_cast<void>(sample_kinematics(model, g, sample, shifts, works_[at(chunk)]));
-      }
-    }
-  });
-}
-
-const ContactSystem::Kinematics&
-ContactSystem::sample_kinematics(const Model& model,
-                                 const Group& g,
-                                 int sample,
-                                 const std::vector<std::pair<double, double>>& shifts,
-                                 KinematicsWork& work) const {
-  const double u = sample == 0 ? g.lo : sample == 1 ? 0.5 * (g.lo + g.hi) : g.hi;
-  ContactPoint p = points_[at(g.first)];
-  const Point2& a = boundary_.position[at(p.slave_edge)];
-  const Point2& d = boundary_.position[at(boundary_.next[at(p.slave_edge)])];
-  p.slave = a + u * (d - a);
-  p.anchor = 0.0; // the gap does not depend on it: one slot for the whole step
-  p.shift = shifts.empty() ? 0.0 : offset_at(shifts, u);
-  const auto group = static_cast<std::size_t>(&g - groups_.data());
-  return cached_kinematics(model, p, points_.size() + 3 * group + at(sample), work);
-}
-
-double ContactSystem::gap_at(const Model& model,
-                             const Group& g,
-                             int sample,
-                             const std::vector<std::pair<double, double>>& shifts,
-                             const Eigen::VectorXd& raw) const {
-  return sample_kinematics(model, g, sample, shifts, work_).gap(raw);
-}
-
-std::vector<std::pair<double, double>> ContactSystem::shifts_of(const Group& g) const {
-  const auto first = points_.begin() + g.first;
-  const auto last = first + g.count;
-  std::vector<std::pair<double, double>> shifts;
-  if (std::any_of(first, last, [](const ContactPoint& p) { return p.shift != 0.0; })) {
-    for (auto p = first; p != last; ++p)
-      shifts.emplace_back(p->u, p->shift);
-  }
-  return shifts;
-}
-
-bool ContactSystem::augment(Eigen::VectorXd& raw) {
-  const double tolerance = options_.penetration_tolerance;
-  if (tolerance <= 0.0)
-    return false;
-  // Converged: no closed contact penetrates by more than the tolerance, and none pushes across
-  // a gap wider than it (a multiplier left from a deeper solve).
-  const double penetration = max_penetration();
-  const bool again = penetration > tolerance ||
-                     std::any_of(points_.begin(), points_.end(), [&](const ContactPoint& p) {
-                       return closed(p.mode) && p.shift > 0.0 && p.gap - p.offset > tolerance;
-                     });
-  if (!again)
-    return false;
-  // The solve to fall back on: of the converged ones, the least penetrating (a pass can close
-  // a contact deeper than any before it where the pushes move bodies into others).
-  if (has_converged_ && penetration > tolerance && penetration >= converged_penetration_) {
-    // The last pass left the deepest contact no shallower: a body squeezed between contacts
-    // whose multipliers grow without pushing it out (the 100-block pile: 0.78 mm -> 0.88 mm
-    // over four passes while the multiplier grew to 3.4 mm; in the 1000-block pile such
-    // passes launched a top-row block 1.1 m up). The step ends on the least penetrating
-    // solve.
-    back_to_kept(raw);
-    return false;
-  }
-  if (!has_converged_ || penetration < converged_penetration_) {
-    save(converged_);
-    converged_raw_ = raw;
-    converged_penetration_ = penetration;
-    has_converged_ = true;
-  }
-  // Uzawa's update of the multipliers, lambda = max(0, lambda + p x penetration), as lengths
-  // (lambda / p): a spring's zero moves by what it penetrates now, back by a gap (Simo and
-  // Laursen 1992, eq. 4.6; for DDA Lin et al. 1996). A contact without a bond only pushes:
-  // its multiplier stays >= 0. An open contact's goes the same way (to 0 across its gap).
-  for (ContactPoint& p : points_) {
-    if (!closed(p.mode) && p.shift == 0.0)
-      continue;
-    const double shift = p.shift + (p.offset - p.gap);
-    p.shift = p.bonded ? shift : std::max(0.0, shift);
-  }
-  return true;
-}
-
-std::vector<int> ContactSystem::point_dofs(const Model& model, int i) const {
-  std::vector<int> dofs;
-  append_point_dofs(model, i, dofs);
-  return dofs;
-}
-
-void ContactSystem::append_point_dofs(const Model& model, int i, std::vector<int>& out) const {
-  const std::vector<int>& dofs = cached_kinematics(model, points_[at(i)], at(i)).dofs;
-  out.insert(out.end(), dofs.begin(), dofs.end());
-}
-
-bool ContactSystem::contribution(const Model& model,
-                                 int i,
-                                 Eigen::MatrixXd* stiffness,
-                                 Eigen::VectorXd& load,
-                                 bool upper) const {
-  const ContactPoint& p = points_[at(i)];
-  // One kinematics: its unknowns are point_dofs(i), in that order.
-  const Kinematics& k = cached_kinematics(model, p, at(i));
-  const Eigen::Index n = static_cast<Eigen::Index>(k.dofs.size());
-  if (stiffness != nullptr)
-    stiffness->setZero(n, n);
-  load.setZero(n);
-  if (p.mode == ContactMode::open)
-    return false;
-  const Eigen::VectorXd& hn = k.hn;
-  const Eigen::VectorXd& hs = k.hs;
-  // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
-  if (stiffness != nullptr)
-    add_outer(*stiffness, p.stiffness, hn, upper);
-  load -= p.stiffness * k.g0 * hn;
-  if (p.mode == ContactMode::lock) {
-    // Shear spring (eq. 3.25-3.26) anchored at P0.
-    if (stiffness != nullptr)
-      add_outer(*stiffness, p.stiffness, hs, upper);
-    load -= p.stiffness * k.s0 * hs;
-  } else if (friction_coupled(p)) {
-    return true; // its friction is in the solve: friction_coupling()
-  } else if (const double friction = friction_force(p); friction != 0.0) {
-    // Sliding: a pair of friction forces as loads, opposing the sliding (eq. 3.27-3.33),
-    // from the normal force of the last iteration so that the matrix stays symmetric. What
-    // follows the normal force is friction; a bond's cohesion alone is a constant load.
-    load -= static_cast<double>(p.slide_sign) * friction * hs;
-    return friction != bond_cohesion(p);
-  }
-  return false;
-}
-
-double ContactSystem::group_stiffness(const Group& g) const {
-  double sum = 0.0;
-  for (int q = 0; q < g.count; ++q)
-    sum += points_[at(g.first + q)].stiffness;
-  return sum;
-}
-
-std::vector<ContactSystem::FrictionCoupling>
-ContactSystem::friction_coupling(const Model& model) const {
-  std::vector<FrictionCoupling> coupling;
-  for (const Group& g : groups_) {
-    const ContactPoint& lead = points_[at(g.first)];
-    if (!friction_coupled(lead))
-      continue;
-    const double placed = group_stiffness(g);
-    FrictionCoupling f;
-    f.point = g.first;
-    f.coef = static_cast<double>(lead.slide_sign) * std::tan(lead.strength.friction_angle);
-    const std::vector<int>& dofs = cached_kinematics(model, lead, at(g.first)).dofs;
-    f.w.setZero(static_cast<Eigen::Index>(dofs.size()));
-    f.a.setZero(f.w.size());
-    // The friction of the pair, tan(phi) times the springs' resultant, shared among its points
-    // by stiffness as update_modes() shares the normal force.
-    for (int q = 0; q < g.count; ++q) {
-      const ContactPoint& p = points_[at(g.first + q)];
-      const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
-      NMM_ASSERT(k.dofs == dofs, "the points of a contact couple the same unknowns");
-      f.w += (placed > 0.0 ? p.stiffness / placed : 0.0) * k.hs;
-      f.a += p.stiffness * k.hn;
-      f.c0 += p.stiffness * k.g0;
-    }
-    coupling.push_back(std::move(f));
-  }
-  return coupling;
-}
-
-ModeUpdate ContactSystem::update_modes(const Model& model, const Eigen::VectorXd& raw) {
-  ModeUpdate update;
-  held_beyond_.clear();
-  held_against_.clear();
-  // Friction consistency is judged on the whole system, by the work of friction in the step:
-  // the work of the change of the friction forces since they were applied against the work
-  // of all friction. A contact carrying a few newtons may change by a large fraction without
-  // any effect on the motion.
-  double friction_change = 0.0;
-  double friction_total = 0.0;
-  struct Measure {
-    double gap = 0.0;
-    double shear = 0.0;
-    double ds = 0.0;
-  };
-  std::vector<Measure> measure;
-  struct LiftOff {
-    int group = 0;
-    Part part;
-    bool just_closed = false;
-    double pulling = 0.0; ///< force of the springs on parts that no longer press (tension)
-    double pushing = 0.0; ///< force the springs would take on parts that now press
-    /// force of the springs over the whole overlap stretched by the rounding
-    double spring_noise = 0.0;
-    double bearing = 0.0; ///< the pair's normal force (its springs that push)
-  };
-  std::vector<LiftOff> lift_off;
-  double total_normal = 0.0;
-  for (Group& g : groups_) {
-    // Gap, shear and step motion of every point with the new step displacement.
-    measure.assign(at(g.count), Measure{});
-    for (int q = 0; q < g.count; ++q) {
-      ContactPoint& p = points_[at(g.first + q)];
-      const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
-      const double ds = k.tangential(raw);
-      measure[at(q)] = {k.gap(raw), k.s0 + ds, ds};
-      p.gap = measure[at(q)].gap + p.offset + p.shift;
-    }
-    // Modes by Shi's table (8.2), decided per contact from its resultants: an angle contact
-    // is one point; the Gauss points of an edge-to-edge pair decide together, as one joint
-    // element would.
-    double stiffness = 0.0;
-    double normal = 0.0; // resultant, compressive positive
-    double shear = 0.0;  // resultant of the shear springs (lock)
-    double motion = 0.0; // stiffness-weighted tangential step motion
-    double gap = 0.0;    // stiffness-weighted gap
-    double cohesion = 0.0;
-    double tension = 0.0;
-    for (int q = 0; q < g.count; ++q) {
-      const ContactPoint& p = points_[at(g.first + q)];
-      stiffness += p.stiffness;
-      normal -= p.stiffness * measure[at(q)].gap;
-      shear += p.stiffness * measure[at(q)].shear;
-      motion += p.stiffness * measure[at(q)].ds;
-      gap += p.stiffness * measure[at(q)].gap;
-      if (p.bonded) {
-        cohesion += p.strength.cohesion * p.length;
-        tension += p.strength.tensile_strength * p.length;
-      }
-    }
-    ContactPoint& lead = points_[at(g.first)];
-    if (stiffness > 0.0) {
-      gap /= stiffness;
-      motion /= stiffness;
-    } else {
-      gap = measure[0].gap;
-      motion = measure[0].ds;
-    }
-    // Edge-to-edge: where the edges now press on each other (the gap is linear along the
-    // edge for order-0 covers, quadratic for order 1).
-    Part pressed;
-    double deepest = -gap;
-    double pulling = 0.0; // force of the springs on parts that no longer press
-    double pushing = 0.0; // force the springs would take on the parts that now press
-    // The force of the pair's springs all along its overlap stretched by the rounding: a
-    // spring move that gains or loses less is none.
-    double spring_noise = 0.0;
-    bool tie = false; // every gap sample within the rounding
-    // The normal force the contact bears: the resultant of its springs, or, for the springs of
-    // an edge-to-edge pair that go where the edges press, that of its springs that push. Springs
-    // left where the edges have lifted off pull; their tension is no normal force for friction
-    // (a pair tipping onto one end would otherwise slide on the force of a lifting end).
-    double bearing = normal;
-    if (g.edge && !lead.bonded) {
-      bearing = 0.0;
-      for (int q = 0; q < g.count; ++q)
-        bearing += points_[at(g.first + q)].stiffness * std::max(0.0, -measure[at(q)].gap);
-    }
-    if (g.edge) {
-      const std::vector<std::pair<double, double>> shifts = shifts_of(g);
-      std::array<double, 3> gaps{gap_at(model, g, 0, shifts, raw)};
-      std::size_t n = 1;
-      if (gauss_ == 3)
-        gaps[n++] = gap_at(model, g, 1, shifts, raw);
-      gaps[n++] = gap_at(model, g, 2, shifts, raw);
-      const std::span<const double> samples(gaps.data(), n);
-      const GapProfile profile(g.lo, g.hi, samples);
-      pressed = profile.negative();
-      deepest = -*std::min_element(samples.begin(), samples.end());
-      tie = std::all_of(samples.begin(), samples.end(),
-                        [&](double s) { return std::abs(s) <= rounding_; });
-      if (pressed.found) {
-        const double alpha =
-            options_.penalty / options_.spring_length * std::abs(g.t_next - g.t_first);
-        pulling = alpha * profile.outside(g.from, g.to, pressed.from, pressed.to);
-        pushing = alpha * profile.outside(pressed.from, pressed.to, g.from, g.to);
-        spring_noise = alpha * rounding_ * (g.hi - g.lo);
-      }
-    }
-    const double friction = std::tan(lead.strength.friction_angle);
-    const double limit = std::max(0.0, bearing) * friction + cohesion;
-    const ContactMode before = lead.mode;
-    const bool coupled = friction_coupled(lead); // in the solve that gave raw
-    ContactMode after = before;
-    int sign = lead.slide_sign;
-    const bool partial = g.edge && !lead.bonded; // springs only on the pressed part
-    // Gaps, motions and the forces of springs stretched by them that are within the rounding
-    // of the coordinates change no mode: at rest they are noise, and a contact at a tie (a
-    // joint face touching with no force, a contact sitting at the limit of friction) would
-    // flip on every solve. The mode it is in holds it there. So an edge-to-edge pair closes
-    // when it presses by more than the rounding somewhere, and opens when it presses nowhere
-    // unless all its gaps are within the rounding: faces cut from one rock touch at such a tie
-    // (a jointed rock mass dropped from rest, 1,003 blocks: 25 refactorisations a step, now
-    // 1.4; docs/formulation.md, "Rounding").
-    const double noise = stiffness * rounding_;
-    // An open bond closes again where its springs would pull within its tensile strength
-    // (with no strength: where it penetrates, as any contact).
-    const bool closes = partial       ? pressed.found && deepest > rounding_
-                        : lead.bonded ? normal > -tension + noise
-                                      : gap < -rounding_;
-    if (before == ContactMode::open) {
-      if (closes) {
-        // Shi 8.2: open -> slide when the shear the lock would take, the step's tangential
-        // motion against a spring of the same stiffness, beats friction on the normal force
-        // the penetration gives; open -> lock otherwise.
-        const double trial_shear = std::abs(motion) * stiffness;
-        const double trial_limit = std::max(0.0, deepest) * stiffness * friction + cohesion;
-        if (trial_shear > trial_limit && !hold_shear_) {
-          after = ContactMode::slide;
-          sign = motion > 0.0 ? 1 : -1;
-        } else {
-          after = ContactMode::lock;
-        }
-      }
-    } else if (partial ? !pressed.found && !tie : normal < -tension - noise) {
-      // Lifted off, or tension beyond the strength of a bond: a bond that is open when the
-      // iteration has converged breaks (end_step()); one that an iteration on the way opens
-      // keeps it, and holds again where it closes.
-      after = ContactMode::open;
-    } else if (before == ContactMode::lock) {
-      // A contact that has switched between lock and slide chatter_limit times in the step
-      // sits at the limit of friction: locked it needs more than friction, sliding it turns
-      // back against it (the chatter rule, docs/formulation.md). In a static step it stays
-      // locked, and the step reports by how much it exceeds its limit (ModeUpdate::
-      // lock_excess): the excess leaves a state beyond Coulomb's law, but no motion. In a
-      // dynamic step it slides at its limit instead (below): a lock held beyond it acts on the
-      // bodies for the whole step, and the impulse stays in their velocities (in the
-      // 1000-block pile of bench/stress.py a lock held at 6.8 times its limit spun a settled
-      // block up to 17 rad/s and threw a top-row block 2 m up). A lock without any friction
-      // limit is never held: with no normal force and no cohesion it slides freely, which
-      // cannot chatter (a tunnel's faces at a tie were held with 0.42 MN of shear and no
-      // normal force).
-      if (std::abs(shear) > limit + noise && !hold_shear_) {
-        if (limit > 0.0 && lead.slips >= options_.chatter_limit && !dynamic_) {
-          ++counters_.chatter_holds;
-          held_beyond_.emplace_back(std::abs(shear) - limit, std::abs(shear) / limit);
-        } else {
-          after = ContactMode::slide;
-          sign = shear > 0.0 ? 1 : -1;
-        }
-      }
-    } else if (motion * lead.slide_sign < -rounding_) {
-      // The sliding reversed against its friction: it sticks. Without any friction or
-      // cohesion nothing can hold it: it keeps sliding, the other way (a lock would let go
-      // at once and the two would alternate for ever). In a dynamic step a contact at the
-      // chatter limit keeps sliding, its friction at the limit and in its direction: the
-      // force is Coulomb's, and what it does along a motion that turned back is reported
-      // (ModeUpdate::slide_feed).
-      if (limit > 0.0 && !hold_shear_ && dynamic_ && lead.slips >= options_.chatter_limit) {
-        ++counters_.chatter_holds;
-        held_against_.emplace_back(limit, std::abs(motion));
-      } else if (limit > 0.0 && !hold_shear_) {
-        after = ContactMode::lock;
-      } else {
-        sign = motion > 0.0 ? 1 : -1;
-      }
-    }
-    // Chatter rule (docs/formulation.md): a contact that has switched between open and
-    // closed chatter_limit times in the step lifts off whenever it is closed and penetrates
-    // whenever it is open: the force it can carry is nil. It stays open for the rest of the
-    // step (its small penetration is reported, and it is kept for the next step), unless it
-    // penetrates by more than 1e-3 of the largest step displacement: then it is no near-zero
-    // contact, it closes, and a step that cannot settle is cut.
-    if (!closed(before) && closed(after) && lead.flips >= options_.chatter_limit &&
-        deepest <= held_open_penetration_) {
-      after = ContactMode::open;
-      ++counters_.chatter_holds;
-    }
-    const bool flip = closed(after) != closed(before);
-    for (int q = 0; q < g.count; ++q) {
-      ContactPoint& p = points_[at(g.first + q)];
-      const double length =
-          (boundary_.position[at(boundary_.next[at(p.master)])] - boundary_.position[at(p.master)])
-              .norm();
-      const Measure& m = measure[at(q)];
-      if (!closed(before) && closed(after)) {
-        // Locked at its entrance position (Shi eq. 3.4-3.6): where the gap crosses zero, a
-        // fraction t0 of the step's tangential motion along the edge.
-        const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
-        const double t0 = k.g0 > 0.0 ? std::clamp(k.g0 / (k.g0 - m.gap), 0.0, 1.0) : 0.0;
-        p.anchor = projection(p.master, p.slave) + t0 * m.ds / length;
-      }
-      // slide -> lock keeps the anchor the step started with: it sticks where it was. The
-      // slide of this iteration's trial (with friction from the last iteration's normal force)
-      // is no motion that happened; anchoring there froze it into the step (examples/10: a
-      // pivot slid 2.4 mm against the way the load pushes it).
-      p.mode = after;
-      p.slide_sign = sign;
-      if (flip)
-        ++p.flips;
-      if (closed(before) && closed(after) && before != after)
-        ++p.slips;
-    }
-    if (partial && closed(after) && pressed.found)
-      lift_off.push_back({static_cast<int>(&g - groups_.data()), pressed, !closed(before), pulling,
-                          pushing, spring_noise, bearing});
-    // Friction from this solve's normal force, shared by stiffness. A contact that just
-    // closed has none yet: the penetration it reached while open, without its spring,
-    // overestimates it many times (friction from it can throw a block back up a slope).
-    const double used = [&] {
-      double sum = 0.0;
-      for (int q = 0; q < g.count; ++q)
-        sum += points_[at(g.first + q)].normal_force;
-      return sum;
-    }();
-    const double now = closed(after) && closed(before) ? bearing : 0.0;
-    const double placed = group_stiffness(g);
-    // The shear force on the master along its edge (first vertex to next): the spring's pull,
-    // or friction's, which opposes the slave's sliding (sign) and so pulls the master along.
-    for (int q = 0; q < g.count; ++q) {
-      ContactPoint& p = points_[at(g.first + q)];
-      const double share = placed > 0.0 ? p.stiffness / placed : 0.0;
-      p.normal_force = now * share;
-      p.shear_force = after == ContactMode::lock ? p.stiffness * measure[at(q)].shear
-                      : after == ContactMode::slide
-                          ? sign * (std::max(0.0, now) * friction * share + bond_cohesion(p))
-                          : 0.0;
-    }
-    if (after == ContactMode::slide) {
-      const double work = friction * std::abs(motion);
-      // Friction acts on the compressive part of the normal force (a bond in tension slides
-      // on its cohesion alone), and the cohesion a bond slides with is friction work too.
-      friction_total += work * std::max(0.0, now) + cohesion * std::abs(motion);
-      // A change of the normal force within that of the springs stretched by the rounding is
-      // none (the friction of a contact at a tie, on a normal force of rounding, would be
-      // chased for ever: its relative change never settles). Coupled friction acted with the
-      // normal force of this very solve: the springs' resultant, which differs from what the
-      // pair bears only by springs that pull within tension_tolerance (or that the next
-      // lift-off move takes away), so it has no change to chase.
-      const double change = coupled ? 0.0
-                            : before == ContactMode::slide
-                                ? std::max(0.0, now) - std::max(0.0, used)
-                                : std::max(0.0, now);
-      if (std::abs(change) > noise)
-        friction_change += work * std::abs(change);
-    }
-    if (closed(after))
-      total_normal += std::max(0.0, normal);
-    if (after != before) {
-      ++update.changes;
-      last_changed_ = g.first;
-    }
-  }
-  // The springs of edge-to-edge contacts move to the parts that press (a semi-smooth active
-  // set on each overlap), for a contact that just closed, and for the others when the force
-  // of the springs that come or go is not negligible against all contact force (near the
-  // lift-off point the gaps are at the level of the springs' own penetration; chasing them
-  // there would only cost iterations). The anchors of a lock follow the slave material
-  // points.
-  for (const LiftOff& l : lift_off) {
-    Group& g = groups_[at(l.group)];
-    double from = l.part.from;
-    double to = l.part.to;
-    if (!l.just_closed) {
-      const bool pulls =
-          l.pulling > std::max(options_.tension_tolerance * total_normal, l.spring_noise);
-      const bool pushes =
-          l.pushing > std::max(options_.lift_off_tolerance * total_normal, l.spring_noise);
-      // A lift-off point at nearly zero pressure can swing between two places for ever: its
-      // first move back is made, and then the contact settles: from then on it only gives
-      // up springs that pull (shrinking cannot cycle; what it leaves out penetrates at
-      // nearly zero pressure). Settling instead of that first move back kept springs off a
-      // part that pressed hard again (a block tipping forward on its base while locked in
-      // the first solve, then sliding flat: docs/formulation.md, "Lift-off"). What it leaves
-      // out does not always press at nearly zero pressure: in a pile of blocks landing, the
-      // other contacts' changes swing a pair's pressed part between 0.6 mm and 76 mm of its
-      // edge, the shrinking kept the 0.6 mm, and the block sank 2.1 mm into the other where
-      // the left-out part would have taken 50 times the pair's force. So when the part left
-      // out would take more than all the pair bears, its ends search for the place between
-      // their last two (LiftOffEnd) for a few moves, and then the contact settles for good.
-      // When the part that presses no longer meets the part with springs, every spring pulls
-      // and the pressed part has none: the springs move there (kept, they held a cylinder on
-      // a block with 3.3e6 N of tension against a load of 1e7 N; examples/17 at 1000 E).
-      const bool back =
-          (from - g.from) * g.from_end.moved < 0.0 || (to - g.to) * g.to_end.moved < 0.0;
-      const bool overlap = std::min(to, g.to) - std::max(from, g.from) > 1e-6 * (g.hi - g.lo);
-      if (g.searching && g.searches >= options_.lift_off_searches)
-        g.stop_search(); // settled for good
-      if (!g.settled && back && (pulls || pushes)) {
-        g.settled = true; // this first move back is made
-      } else if (g.settled && overlap && g.searches < options_.lift_off_searches &&
-                 (g.searching || l.pushing > l.bearing)) {
-        if (!pulls && !pushes)
-          continue;
-        g.searching = true;
-        ++g.searches;
-        const double negligible = 1e-9 * (g.hi - g.lo);
-        const double wanted_from = from;
-        const double wanted_to = to;
-        from = g.from_end.next(g.from, wanted_from, negligible);
-        to = g.to_end.next(g.to, wanted_to, negligible);
-        if (!(from < to)) { // the two ends crossed: the part that presses now
-          from = wanted_from;
-          to = wanted_to;
-          g.from_end = LiftOffEnd{from - g.from};
-          g.to_end = LiftOffEnd{to - g.to};
-        }
-      } else if (g.settled && overlap) {
-        from = std::max(from, g.from);
-        to = std::min(to, g.to);
-        if (!pulls)
-          continue;
-      } else if (g.settled) {
-        if (!pulls && !pushes)
-          continue;
-        g.stop_search();
-      } else if (!pulls && !pushes) {
-        continue;
-      }
-      if (!g.searching) {
-        g.from_end.moved = from - g.from;
-        g.to_end.moved = to - g.to;
-      }
-    } else {
-      g.stop_search();
-    }
-    std::vector<std::pair<double, double>> offsets;
-    const std::vector<std::pair<double, double>> shifts = shifts_of(g);
-    double normal = 0.0;
-    for (int q = 0; q < g.count; ++q) {
-      const ContactPoint& p = points_[at(g.first + q)];
-      offsets.emplace_back(p.u, p.anchor - projection(p.master, p.slave));
-      normal += p.normal_force;
-    }
-    const int master = points_[at(g.first)].master;
-    place(g, from, to, [&](double u, const Point2& slave) {
-      return projection(master, slave) + offset_at(offsets, u);
-    });
-    // The springs' multipliers go with them as the anchors do (interpolated along the pair).
-    if (!shifts.empty()) {
-      for (int q = 0; q < g.count; ++q) {
-        ContactPoint& p = points_[at(g.first + q)];
-        p.shift = offset_at(shifts, p.u);
-      }
-    }
-    const double placed = group_stiffness(g);
-    for (int q = 0; q < g.count; ++q) {
-      ContactPoint& p = points_[at(g.first + q)];
-      p.normal_force = placed > 0.0 ? normal * p.stiffness / placed : 0.0;
-    }
-    if (!l.just_closed) { // (a contact that just closed is counted already)
-      ++update.changes;
-      ++update.moves;
-      last_changed_ = g.first;
-    }
-  }
-  update.friction_residual = friction_total > 0.0 ? friction_change / friction_total : 0.0;
-  // Locks held beyond friction by more than the iteration's negligible force (what the
-  // lift-off tolerance lets springs leave or not take): a hold of 0.09 N beyond a limit of
-  // 5e-4 N on a slope carrying meganewtons is no violation to report.
-  for (const auto& [excess, ratio] : held_beyond_) {
-    if (excess > options_.lift_off_tolerance * total_normal)
-      update.lock_excess = std::max(update.lock_excess, ratio);
-  }
-  // Held slides whose motion turned back: the work of their friction along it, where that
-  // friction is not negligible in the same sense.
-  for (const auto& [force, motion] : held_against_) {
-    if (force > options_.lift_off_tolerance * total_normal)
-      update.slide_feed += force * motion;
-  }
-  holds_ = {update.lock_excess, update.slide_feed};
-  return update;
-}
-
-const ContactSystem::Carried* ContactSystem::carried_at(std::uint64_t key) const {
-  const int k = carried_index_.find(key);
-  return k == KeyIndex::none ? nullptr : &carried_[at(k)];
-}
-
-std::span<const std::pair<double, double>> ContactSystem::anchors_of(const Carried& state) const {
-  return {carried_anchors_.data() + state.first_anchor, at(state.n_anchors)};
-}
-
-void ContactSystem::carry(std::uint64_t key,
-                          Carried state,
-                          std::span<const std::pair<double, double>> anchors) {
-  state.first_anchor = static_cast<int>(carried_anchors_.size());
-  state.n_anchors = static_cast<int>(anchors.size());
-  carried_anchors_.insert(carried_anchors_.end(), anchors.begin(), anchors.end());
-  const auto k = static_cast<int>(carried_.size());
-  if (carried_index_.insert(key, k)) {
-    carried_.push_back(state);
-    carried_keys_.push_back(key);
-  } else { // the key carried already: the new state replaces it
-    carried_[at(carried_index_.find(key))] = state;
-  }
-}
-
-void ContactSystem::clear_carried() {
-  carried_.clear();
-  carried_keys_.clear();
-  carried_index_.clear();
-  carried_anchors_.clear();
 }
 
 std::uint64_t ContactSystem::interface_key(int slave, int master) const {
@@ -1467,14 +377,8 @@ void ContactSystem::break_yielded_interfaces(const Model& model, const Eigen::Ve
     if (lead.mode == ContactMode::open) {
       // Open at the end of the step: this part breaks where its springs would pull beyond
       // its tensile strength (not where the chatter rule holds it open within it).
-      double pull = 0.0;
-      double strength = 0.0;
-      for (int q = 0; q < g.count; ++q) {
-        const ContactPoint& p = points_[at(g.first + q)];
-        pull += p.stiffness * p.gap;
-        strength += p.strength.tensile_strength * p.length;
-      }
-      if (pull > strength)
+      if (law_->breaks_open(
+              std::span<const ContactPoint>(points_).subspan(at(g.first), at(g.count))))
         unbond(g, g.key);
       continue;
     }
@@ -1505,61 +409,9 @@ void ContactSystem::break_yielded_interfaces(const Model& model, const Eigen::Ve
   }
 }
 
-void ContactSystem::end_step(const Model& model, const Eigen::VectorXd& raw) {
-  break_yielded_interfaces(model, raw);
-  clear_carried();
-  carried_index_.reserve(groups_.size());
-  std::vector<std::pair<double, double>> anchors;
-  for (const Group& g : groups_) {
-    const ContactPoint& lead = points_[at(g.first)];
-    // Closed contacts carry their state; an open one that penetrates (held open by the
-    // chatter rule) is kept so that the next detection does not drop it.
-    const bool penetrating =
-        std::any_of(points_.begin() + g.first, points_.begin() + g.first + g.count,
-                    [](const ContactPoint& p) { return p.gap < p.offset; });
-    if (!closed(lead.mode) && !penetrating)
-      continue;
-    Carried state;
-    state.slave = lead.slave_edge;
-    state.master = lead.master;
-    state.mode = lead.mode;
-    state.slide_sign = lead.slide_sign;
-    // An open contact's offset follows its gap up (it never grows: a permanent overlap is
-    // one the springs found, not one they make).
-    state.offset = std::min(0.0, std::max(lead.offset, lead.gap));
-    anchors.clear();
-    for (int q = 0; q < g.count; ++q) {
-      const ContactPoint& p = points_[at(g.first + q)];
-      state.normal += p.normal_force;
-      double anchor = p.anchor;
-      if (p.mode == ContactMode::slide) {
-        // The next lock anchors where the slave point ends up on the edge. (Less the stretch
-        // of its spring at the friction it slid with, sign N tan(phi) / p, a lock taking over
-        // would start with that force: tried, and not kept: docs/formulation.md, "Anchors".)
-        const Kinematics& k = cached_kinematics(model, p, at(g.first + q));
-        const double l = (boundary_.position[at(boundary_.next[at(p.master)])] -
-                          boundary_.position[at(p.master)])
-                             .norm();
-        anchor = p.anchor + (k.s0 + k.tangential(raw)) / l;
-      }
-      anchors.emplace_back(p.u, anchor);
-    }
-    carry(g.key, state, anchors);
-  }
-}
-
 int ContactSystem::n_closed() const {
   return static_cast<int>(std::count_if(points_.begin(), points_.end(),
                                         [](const ContactPoint& p) { return closed(p.mode); }));
-}
-
-double ContactSystem::max_penetration() const {
-  double worst = 0.0;
-  for (const ContactPoint& p : points_) {
-    if (closed(p.mode))
-      worst = std::max(worst, p.offset - p.gap);
-  }
-  return worst;
 }
 
 std::vector<ContactSystem::Place> ContactSystem::current_places(const Model& model) const {
@@ -1589,89 +441,6 @@ std::string ContactSystem::describe(int i) const {
   const Point2& b = boundary_.position[at(boundary_.next[at(p.master)])];
   return "contact of " + point_text(p.slave, 6) + " against the edge " + point_text(a, 6) + "-" +
          point_text(b, 6);
-}
-
-void ContactSystem::save_state(StateWriter& out) const {
-  out.section("CONT");
-  std::vector<std::uint64_t> keys = carried_keys_;
-  std::sort(keys.begin(), keys.end());
-  out.put_count(keys.size());
-  for (const std::uint64_t key : keys) {
-    const Carried& state = *carried_at(key);
-    out.put(static_cast<std::int64_t>(key));
-    out.put(static_cast<std::int64_t>(state.slave));
-    out.put(static_cast<std::int64_t>(state.master));
-    out.put(static_cast<std::int64_t>(state.mode));
-    out.put(static_cast<std::int64_t>(state.slide_sign));
-    out.put(state.normal);
-    out.put(state.offset);
-    out.put_count(at(state.n_anchors));
-    for (const auto& [u, anchor] : anchors_of(state)) {
-      out.put(u);
-      out.put(anchor);
-    }
-  }
-  keys.clear();
-  for (const auto& [key, broken] : broken_) {
-    if (broken)
-      keys.push_back(key);
-  }
-  std::sort(keys.begin(), keys.end());
-  out.put_count(keys.size());
-  for (const std::uint64_t key : keys)
-    out.put(static_cast<std::int64_t>(key));
-  out.put(static_cast<std::int64_t>(counters_.points));
-  out.put(static_cast<std::int64_t>(counters_.chatter_holds));
-  out.put(static_cast<std::int64_t>(counters_.bonds_broken));
-  out.put(static_cast<std::int64_t>(counters_.detection.edge_pairs));
-  out.put(static_cast<std::int64_t>(counters_.detection.vertex_edge));
-  out.put(static_cast<std::int64_t>(counters_.detection.vertex_vertex));
-  out.put(static_cast<std::int64_t>(counters_.detection.edge_edge));
-}
-
-void ContactSystem::load_state(StateReader& in) {
-  in.section("CONT");
-  std::size_t n_edges = 0;
-  for (const auto& loop : strength_of_edge_)
-    n_edges += loop.size();
-  auto edge = [&](std::int64_t e) {
-    if (e < 0 || static_cast<std::size_t>(e) >= n_edges)
-      in.fail("a contact names edge " + std::to_string(e) + " of " + std::to_string(n_edges));
-    return static_cast<int>(e);
-  };
-  clear_carried();
-  const std::size_t n = in.count();
-  std::vector<std::pair<double, double>> anchors;
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto key = static_cast<std::uint64_t>(in.integer());
-    Carried state;
-    state.slave = edge(in.integer());
-    state.master = edge(in.integer());
-    const std::int64_t mode = in.integer();
-    if (mode < 0 || mode > static_cast<std::int64_t>(ContactMode::lock))
-      in.fail("a contact mode of " + std::to_string(mode));
-    state.mode = static_cast<ContactMode>(mode);
-    state.slide_sign = static_cast<int>(in.integer());
-    state.normal = in.real();
-    state.offset = in.real();
-    anchors.resize(in.count());
-    for (auto& [u, anchor] : anchors) {
-      u = in.real();
-      anchor = in.real();
-    }
-    carry(key, state, anchors);
-  }
-  broken_.clear();
-  const std::size_t n_broken = in.count();
-  for (std::size_t k = 0; k < n_broken; ++k)
-    broken_[static_cast<std::uint64_t>(in.integer())] = true;
-  counters_.points = in.integer();
-  counters_.chatter_holds = in.integer();
-  counters_.bonds_broken = in.integer();
-  counters_.detection.edge_pairs = in.integer();
-  counters_.detection.vertex_edge = in.integer();
-  counters_.detection.vertex_vertex = in.integer();
-  counters_.detection.edge_edge = in.integer();
 }
 
 } // namespace nmm

@@ -4,8 +4,11 @@
 // 6.2-6.5 and 8.2; Mohr-Coulomb joints with cohesion and tensile strength).
 #pragma once
 
+#include "contact/contact_point.hpp"
 #include "contact/detection.hpp"
+#include "contact/joint_law.hpp"
 #include "contact/key_set.hpp"
+#include "contact/lift_off.hpp"
 #include "manifold/model.hpp"
 
 #include <Eigen/Core>
@@ -13,6 +16,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -20,16 +24,6 @@
 #include <vector>
 
 namespace nmm {
-
-/// Mohr-Coulomb strength of a joint or a contact surface.
-struct JointStrength {
-  double friction_angle = 0.0;   ///< radians, in [0, pi/2)
-  double cohesion = 0.0;         ///< Pa
-  double tensile_strength = 0.0; ///< Pa
-};
-
-/// The three contact modes of Shi's open-close iteration (1997, 8.2).
-enum class ContactMode : std::uint8_t { open, slide, lock };
 
 /// The boundary loops of @p model flattened for detection, loop after loop (vertex k of loop
 /// l is the edge from it to the next vertex), with the block areas as meshed.
@@ -82,89 +76,6 @@ struct ContactOptions {
   /// Most augmented-Lagrange passes in a step; a step still penetrating by more after them
   /// goes on as it is (its penetration is reported).
   int augment_max = 10;
-};
-
-/// One contact point: an angle against its entrance line, or one Gauss point of an
-/// edge-to-edge pair, with its own state.
-struct ContactPoint {
-  std::uint64_t key = 0;         ///< identity of the contact (ContactCandidate::key)
-  int slave_edge = -1;           ///< the edge (element) the slave point moves with
-  Point2 slave = Point2::Zero(); ///< slave point at the start of the step
-  /// Edge-to-edge: position of the slave point on its edge (0 at its first vertex, 1 at the
-  /// next); the same material point from step to step.
-  double u = 0.0;
-  int master = -1;        ///< master edge (entrance line)
-  double length = 0.0;    ///< tributary length for strengths and integrated stiffness, m
-  double stiffness = 0.0; ///< normal and shear spring stiffness, N/m
-  JointStrength strength; ///< of the pair (the weaker of the two sides)
-  bool bonded = false;    ///< intact joint: holds tension and cohesion until it breaks
-  ContactMode mode = ContactMode::open;
-  /// Contact position on the master edge's line (parameter: 0 at its first vertex, 1 at the
-  /// next; beyond them when the slave has moved past an end) where the shear spring of a
-  /// locked contact is anchored (Shi 3.5, P0), carried to the next step.
-  double anchor = 0.0;
-  /// Sliding direction along the master edge (+1, -1).
-  int slide_sign = 0;
-  int flips = 0;             ///< open/closed switches in this step (chatter rule)
-  int slips = 0;             ///< lock/slide switches in this step (chatter rule)
-  double normal_force = 0.0; ///< compressive positive, N
-  double shear_force = 0.0;  ///< along the master edge, N
-  double gap = 0.0;          ///< normal gap at the end of the last solve (negative: penetration)
-  /// Angle contacts: the gap at which the normal spring starts to push (<= 0). A contact that
-  /// appears already penetrating, because the contact it replaces had softer springs (a
-  /// face that turned past the angle criterion: edge-to-edge springs on a short pressed part
-  /// let a corner sink in hundreds of times deeper than a point spring would), takes that
-  /// penetration as its springs' zero instead of throwing the bodies apart. It rises with
-  /// the gap once the contact opens, and is 0 for everything that meets in the ordinary
-  /// way. The springs push with p (offset + shift - gap).
-  double offset = 0.0;
-  /// Augmented-Lagrange multiplier over the spring stiffness, m (ContactOptions::
-  /// penetration_tolerance): the springs' zero moved by the penetrations of the step's
-  /// earlier solves, so that they push with the force the multiplier carries plus p times
-  /// the penetration left; it decides opening and closing as the springs' force does (an open
-  /// contact's falls back by its gap at the next pass). 0 at the start of every step
-  /// (multipliers carried to the next step, as Lin et al. do, pushed landing blocks off again:
-  /// docs/formulation.md, "Augmented Lagrange").
-  double shift = 0.0;
-};
-
-/// The cohesion a bonded point keeps while it slides at its Mohr-Coulomb limit: an intact
-/// joint yields plastically in shear, c times the length the point represents, N; 0 unbonded.
-[[nodiscard]] inline double bond_cohesion(const ContactPoint& p) {
-  return p.bonded ? p.strength.cohesion * p.length : 0.0;
-}
-
-/// The friction force of a sliding point as its spring pair's load (Shi eq. 3.27-3.33):
-/// normal force of the last iteration times tan(friction angle), plus bond_cohesion() of a
-/// bonded point, N; 0 when the point does not slide, or is neither pressed with friction nor
-/// bonded with cohesion (no friction term is assembled then).
-[[nodiscard]] inline double friction_force(const ContactPoint& p) {
-  if (p.mode != ContactMode::slide)
-    return 0.0;
-  const double bond = bond_cohesion(p);
-  if (p.normal_force <= 0.0 || p.strength.friction_angle == 0.0)
-    return bond;
-  return p.normal_force * std::tan(p.strength.friction_angle) + bond;
-}
-
-/// One end of the part of an edge-to-edge overlap that has springs, as the lift-off
-/// iteration moves it (docs/formulation.md, "Lift-off"). Where the springs should end is
-/// a root of wanted(x) - x, wanted(x) being where the edges stop pressing when the springs
-/// end at x: more springs, less pressed. A search finds it by false position (Illinois)
-/// between the two last places, one on each side.
-struct LiftOffEnd {
-  double moved = 0.0;     ///< the last move (its sign: which way the end went)
-  bool bracketed = false; ///< the root lies between a and b
-  double a = 0.0;         ///< a place of the end, and wanted - a there
-  double ga = 0.0;
-  double b = 0.0; ///< another, with wanted - b of the other sign
-  double gb = 0.0;
-  int kept = 0; ///< the bracket end the last search step kept (+1: b, -1: a)
-  /// The next place of a searching end now at @p now whose edges stop pressing at
-  /// @p wanted: @p wanted until a move goes back, then false position in the bracket of the
-  /// last two places; a bracket narrower than @p negligible no longer holds the root (the
-  /// pair's motion changed under it), and the end goes to @p wanted again.
-  [[nodiscard]] double next(double now, double wanted, double negligible);
 };
 
 /// What one open-close iteration found.
@@ -439,6 +350,29 @@ private:
   void carry(std::uint64_t key, Carried state, std::span<const std::pair<double, double>> anchors);
   /// Forgets every carried state (keeping the storage).
   void clear_carried();
+  /// A carried contact by one of its edges.
+  struct ByEdge {
+    int edge;
+    std::uint64_t key;
+    const Carried* state;
+  };
+  /// The carried contacts sorted by slave edge and by master edge, and for one edge by
+  /// decreasing key.
+  struct CarriedByEdge {
+    std::vector<ByEdge> slave;
+    std::vector<ByEdge> master;
+  };
+  /// CarriedByEdge of the carried contacts @p keep (their keys, increasing).
+  [[nodiscard]] CarriedByEdge carried_by_edge(const std::vector<std::uint64_t>& keep) const;
+  /// The carried state of the contact @p key of @p slave against @p master (an edge pair if
+  /// @p edge): its own, or one the contact takes over (Shi 3.3), or null; *identical tells
+  /// whether its anchors and offset refer to this pair.
+  [[nodiscard]] const Carried* carried_state(const CarriedByEdge& carried,
+                                             std::uint64_t key,
+                                             int slave,
+                                             int master,
+                                             bool edge,
+                                             bool* identical) const;
 
   /// Workspaces of kinematics(): where each unknown sits, the columns and the interpolation
   /// of one point, the terms before they are cut to the unknowns used.
@@ -455,6 +389,13 @@ private:
   /// a step), with the workspace @p work.
   void
   kinematics(const Model& model, const ContactPoint& p, Kinematics& k, KinematicsWork& work) const;
+  struct Term;
+  struct PointTerms;
+  /// The terms of kinematics() summed into @p k when the two elements' unknowns are apart
+  /// (each element's follow in the order of their interpolations' columns) ...
+  static void kinematics_apart(const PointTerms& terms, Kinematics& k, KinematicsWork& work);
+  /// ... and when they may share unknowns (each looked up where it is first used).
+  static void kinematics_shared(const PointTerms& terms, Kinematics& k, KinematicsWork& work);
   /// cached_kinematics() of slot @p slot with the workspace @p work.
   const Kinematics& cached_kinematics(const Model& model,
                                       const ContactPoint& p,
@@ -483,8 +424,30 @@ private:
                               int sample,
                               const std::vector<std::pair<double, double>>& shifts,
                               const Eigen::VectorXd& raw) const;
-  /// Places the Gauss points of edge group g on [from, to] (anchors from @p anchor_of(u)).
-  template <class AnchorOf> void place(Group& g, double from, double to, const AnchorOf& anchor_of);
+  /// Places the Gauss points of edge group g on [from, to], anchored where the slave points
+  /// project on the master, shifted by the shear offsets @p offsets interpolated at their u
+  /// (offset_at()) when given.
+  void
+  place(Group& g, double from, double to, const std::vector<std::pair<double, double>>* offsets);
+  /// What update_modes() found of an edge-to-edge contact whose springs may move to where
+  /// its edges press (docs/formulation.md, "Lift-off").
+  struct LiftOff {
+    int group = 0;
+    OverlapPart part;
+    bool just_closed = false;
+    double pulling = 0.0; ///< force of the springs on parts that no longer press (tension)
+    double pushing = 0.0; ///< force the springs would take on parts that now press
+    /// force of the springs over the whole overlap stretched by the rounding
+    double spring_noise = 0.0;
+    double bearing = 0.0; ///< the pair's normal force (its springs that push)
+  };
+  /// The part of group @p l.group that is to have springs, or none when they stay: the
+  /// pressed part, or the next place of a search, or the pressed part within the springs'
+  /// (a settled contact), by the forces of @p l against all contact force @p total_normal.
+  [[nodiscard]] OverlapPart lift_off_part(const LiftOff& l, double total_normal);
+  /// Moves the springs of the group of @p l to @p part (anchors, multipliers and normal
+  /// forces going with them), counted in @p update.
+  void move_springs(const LiftOff& l, const OverlapPart& part, ModeUpdate& update);
   /// (u, ContactPoint::shift) of the points of group g; empty when every shift is 0 (no
   /// augmented-Lagrange pass: nothing allocated).
   [[nodiscard]] std::vector<std::pair<double, double>> shifts_of(const Group& g) const;
@@ -498,9 +461,122 @@ private:
   /// Anchor parameter on the master of the projection of slave point @p x.
   [[nodiscard]] double projection(int master, const Point2& x) const;
 
+  // begin_step(), in parts.
+  /// The boundary at the start of the step, and each edge's element, strength and bond.
+  void set_up_boundary(const Model& model);
+  /// Puts the spring of angle-to-angle candidate @p c on the entrance line with the smaller
+  /// passing distance (Shi 3.2 [1]): @p p's slave and master.
+  void choose_entrance_line(const ContactCandidate& c, ContactPoint& p) const;
+  /// Adds the contact of candidate @p c (none for an angle pair made already, in
+  /// @p angle_pairs, or an edge pair that only touches at an end), with its state carried
+  /// or new; @p g0 and @p offsets are workspaces.
+  void add_contact(const ContactCandidate& c,
+                   const CarriedByEdge& carried,
+                   KeySet& angle_pairs,
+                   std::vector<double>& g0,
+                   std::vector<std::pair<double, double>>& offsets);
+  /// Adds the point of angle contact @p c, made from @p p, to group @p g, and its gap at the
+  /// start of the step to @p g0.
+  void
+  add_angle_point(const ContactCandidate& c, Group& g, ContactPoint& p, std::vector<double>& g0);
+  /// Adds the Gauss points of edge pair @p c, made from @p p, to group @p g with its overlap,
+  /// and the gaps at the overlap's ends to @p g0; false (nothing added) when the overlap only
+  /// touches.
+  bool
+  add_edge_points(const ContactCandidate& c, Group& g, ContactPoint& p, std::vector<double>& g0);
+  /// The state of group @p g at the start of the step (Shi 3.3): broken bonds, the mode,
+  /// anchors and offset carried or new, the springs placed and the normal force shared.
+  void start_contact(Group& g,
+                     const ContactPoint& p,
+                     const CarriedByEdge& carried,
+                     const std::vector<double>& g0,
+                     std::vector<std::pair<double, double>>& offsets);
+  /// The shapes of the elements of every contact point's edges.
+  void set_up_shapes(const Model& model);
+
+  // update_modes(), in parts.
+  /// Gap, shear and step motion of one point after a solve.
+  struct Measure {
+    double gap = 0.0;
+    double shear = 0.0;
+    double ds = 0.0;
+  };
+  /// What one contact's mode decision is made from: the resultants of its points' springs
+  /// (stiffness-weighted gap and motion), its bonds' cohesion and tension, friction, its
+  /// shear limit, and for an edge pair where its edges press.
+  struct Resultants {
+    double stiffness = 0.0;
+    double normal = 0.0; ///< resultant, compressive positive
+    double shear = 0.0;  ///< resultant of the shear springs (lock)
+    double motion = 0.0; ///< stiffness-weighted tangential step motion
+    double gap = 0.0;    ///< stiffness-weighted gap
+    double cohesion = 0.0;
+    double tension = 0.0;
+    double friction = 0.0;     ///< JointLaw::friction_coefficient()
+    double noise = 0.0;        ///< force of the springs stretched by the rounding
+    OverlapPart pressed;       ///< edge pair: where the edges now press
+    double deepest = 0.0;      ///< deepest penetration
+    double pulling = 0.0;      ///< force of the springs on parts that no longer press
+    double pushing = 0.0;      ///< force the springs would take on the parts that now press
+    double spring_noise = 0.0; ///< force of the pair's springs stretched by the rounding
+    bool tie = false;          ///< every gap sample within the rounding
+    double bearing = 0.0;      ///< the normal force the contact bears
+    double limit = 0.0;        ///< shear limit on it
+  };
+  /// A contact's mode before and after a decision, its sliding direction, and whether its
+  /// friction was coupled in the solve.
+  struct ModeStep {
+    ContactMode before = ContactMode::open;
+    ContactMode after = ContactMode::open;
+    int sign = 0;
+    bool coupled = false;
+  };
+  /// Work of friction in the step (ModeUpdate::friction_residual): of its change since it
+  /// was applied, and of all of it.
+  struct FrictionWork {
+    double change = 0.0;
+    double total = 0.0;
+  };
+  /// Gap, shear and step motion of every point of group @p g after the solve @p raw, into
+  /// @p measure (and each point's gap).
+  void measure_points(const Model& model,
+                      const Group& g,
+                      const Eigen::VectorXd& raw,
+                      std::vector<Measure>& measure);
+  /// The Resultants of group @p g from @p measure.
+  [[nodiscard]] Resultants resultants(const Model& model,
+                                      const Group& g,
+                                      const Eigen::VectorXd& raw,
+                                      const std::vector<Measure>& measure) const;
+  /// The part of @p r on what the contact bears and, for an edge pair, where its edges press
+  /// after the solve @p raw, and its shear limit.
+  void pressing(const Model& model,
+                const Group& g,
+                const Eigen::VectorXd& raw,
+                const std::vector<Measure>& measure,
+                Resultants& r) const;
+  /// The new mode of group @p g by Shi's table (8.2) and the chatter rule.
+  [[nodiscard]] ModeStep decide_mode(const Group& g, const Resultants& r);
+  /// The mode of a closed contact that stays closed, led by @p lead: a lock that slips, a
+  /// slide that sticks or turns, or the chatter rule holding either at the limit of friction.
+  [[nodiscard]] ModeStep closed_mode(const ContactPoint& lead, const Resultants& r);
+  /// Sets the mode of @p step on the points of @p g (anchoring a contact that closes at its
+  /// entrance position), counting flips and slips.
+  void set_modes(const Model& model,
+                 const Group& g,
+                 const std::vector<Measure>& measure,
+                 const ModeStep& step);
+  /// The normal and shear forces of the points of @p g in their new mode, and the work of
+  /// its friction added to @p work_done.
+  void set_forces(const Group& g,
+                  const std::vector<Measure>& measure,
+                  const Resultants& r,
+                  const ModeStep& step,
+                  FrictionWork& work_done);
+
   ContactOptions options_;
-  std::vector<std::vector<JointStrength>> strength_of_edge_;
-  std::vector<std::vector<bool>> bonded_edge_;
+  /// The joints' strength: every decision on it (MohrCoulombJoint; shared, never changed).
+  std::shared_ptr<const JointLaw> law_;
   ContactBoundary boundary_;
   std::vector<int> edge_element_;
   std::vector<JointStrength> edge_strength_;
@@ -566,8 +642,7 @@ private:
   [[nodiscard]] double group_stiffness(const Group& g) const;
   /// Whether point @p p's friction is coupled in the solve (set_coupled_friction()).
   [[nodiscard]] bool friction_coupled(const ContactPoint& p) const noexcept {
-    return coupled_friction_ && p.mode == ContactMode::slide && p.strength.friction_angle > 0.0 &&
-           !p.bonded;
+    return coupled_friction_ && p.mode == ContactMode::slide && law_->has_pure_friction(p);
   }
   /// Rounding of the coordinates of the step, m: gaps and motions within it change no mode.
   double rounding_ = 0.0;

@@ -109,7 +109,7 @@ def dda_first_step(phi, dt, poisson=0.3):
     The edge pair under the base: two Gauss points on the part that presses (a linear gap, so
     the part ends where it crosses zero), penalty / spring length per unit length; sliding,
     with the friction tan(phi) N shared equally by the two points (by their stiffness), as
-    contact/contact_system.cpp does. Iterated to a fixed point, as the open-close iteration.
+    contact/contact_modes.cpp does. Iterated to a fixed point, as the open-close iteration.
     Beyond settling_error() it has the tilt from the friction's moment about the centroid:
     at phi = 40 degrees it lifts the upper end of the base off (eccentricity tan(phi) h/2 =
     0.18 m > L/6), and the springs left on the lower part meet the strain along the slope,
