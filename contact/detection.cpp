@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -251,6 +253,8 @@ private:
     const Point2 n = outward_normal(f);
     const double ga = n.dot(a - c);
     const double gd = n.dot(d - c);
+    if (!behind_inside(e, f, lo, hi) || !behind_inside(f, e, lo_on(f, e), hi_on(f, e)))
+      return;
     // Gap at the ends of the overlap (linear in between).
     const double gap_lo = ga + (gd - ga) * ((lo - ta) / (td - ta));
     const double gap_hi = ga + (gd - ga) * ((hi - ta) / (td - ta));
@@ -277,6 +281,88 @@ private:
       ++edge_edge_;
       add(candidate);
     }
+  }
+
+  /// The overlap of edge e's projection on edge f, as parameters along f from its start (m):
+  /// [lo_on(e, f), hi_on(e, f)].
+  double lo_on(int e, int f) const {
+    const Point2& c = b_.position[at(f)];
+    const Point2& df = direction_[at(f)];
+    return std::max(0.0, std::min((b_.position[at(e)] - c).dot(df),
+                                  (b_.position[at(b_.next[at(e)])] - c).dot(df)));
+  }
+  double hi_on(int e, int f) const {
+    const Point2& c = b_.position[at(f)];
+    const Point2& df = direction_[at(f)];
+    return std::min(edge_length(f), std::max((b_.position[at(e)] - c).dot(df),
+                                             (b_.position[at(b_.next[at(e)])] - c).dot(df)));
+  }
+
+  /// The faces next to edge f at its convex ends (a point of each and its outward normal):
+  /// behind f is inside f's body only up to them.
+  std::vector<std::pair<Point2, Point2>> convex_end_faces(int f) const {
+    std::vector<std::pair<Point2, Point2>> faces;
+    for (const int end : {f, b_.next[at(f)]}) {
+      if (angle_[at(end)] < std::numbers::pi - options_.angle_overlap)
+        faces.emplace_back(b_.position[at(end)],
+                           outward_normal(end == f ? b_.previous[at(f)] : b_.next[at(f)]));
+    }
+    return faces;
+  }
+
+  /// Whether point x, behind edge f by @p gap (< 0), entered f's body through f: behind each
+  /// face next to f at a convex end by no less than behind f (Shi's entrance line is the one
+  /// passed by the least, as in ContactSystem::choose_entrance_line()). A point behind f but
+  /// in front of such a face, or behind it by less, came in through that face or is outside
+  /// the body. So it is where two joints cross: the crack faces of the crossing joint on
+  /// either side of a sliding one lie on one line, and once one side slid, its corner at the
+  /// crossing lies behind the other side's crack face, laterally by the slide, and so does
+  /// part of its crack face; taken as contacts, they held a sliding wedge by a penetration it
+  /// never had (issue 42, item 2). The corners that slid past each other enter by the sliding
+  /// joint's faces instead.
+  bool
+  entered(const std::vector<std::pair<Point2, Point2>>& faces, const Point2& x, double gap) const {
+    return std::ranges::all_of(faces, [&](const std::pair<Point2, Point2>& face) {
+      return face.second.dot(x - face.first) <= gap + rounding_;
+    });
+  }
+
+  /// Whether more than a touching end of slave edge e's part over master f, [lo, hi] along
+  /// f, lies in front of f or entered f's body through f (entered()).
+  bool behind_inside(int e, int f, double lo, double hi) const {
+    const std::vector<std::pair<Point2, Point2>> faces = convex_end_faces(f);
+    if (faces.empty())
+      return true;
+    const Point2& c = b_.position[at(f)];
+    const Point2& df = direction_[at(f)];
+    const Point2 a = b_.position[at(e)];
+    const Point2 d = b_.position[at(b_.next[at(e)])];
+    const double ta = (a - c).dot(df);
+    const double td = (d - c).dot(df);
+    if (std::abs(td - ta) <= rounding_)
+      return true;
+    auto point = [&](double t) { return a + (d - a) * ((t - ta) / (td - ta)); };
+    const Point2 n = outward_normal(f);
+    // The gap and the distances beyond the faces are linear along the part: split [lo, hi]
+    // where one changes sign and judge each piece at its middle.
+    std::vector<double> cuts{lo, hi};
+    auto add_root = [&](double f0, double f1) {
+      if ((f0 < 0.0) != (f1 < 0.0))
+        cuts.push_back(lo + (hi - lo) * f0 / (f0 - f1));
+    };
+    add_root(n.dot(point(lo) - c) + rounding_, n.dot(point(hi) - c) + rounding_);
+    for (const auto& [x, m] : faces)
+      add_root(m.dot(point(lo) - x) - n.dot(point(lo) - c) - rounding_,
+               m.dot(point(hi) - x) - n.dot(point(hi) - c) - rounding_);
+    std::sort(cuts.begin(), cuts.end());
+    double inside = 0.0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const Point2 x = point(0.5 * (cuts[k] + cuts[k + 1]));
+      const double gap = n.dot(x - c);
+      if (gap >= -rounding_ || entered(faces, x, gap))
+        inside += cuts[k + 1] - cuts[k];
+    }
+    return inside > touching_end * edge_length(f);
   }
 
   /// Whether vertex v's contact against edge m is part of an edge-to-edge contact.
@@ -358,6 +444,14 @@ private:
     const double gap = n.dot(p - c);
     if (std::abs(gap) > options_.distance || covered(v, m)) // (the look-up after the arithmetic)
       return;
+    add_vertex_edge(v, m, t, gap, n);
+  }
+
+  /// The angle-to-edge contact of vertex v against edge m (at parameter t along it, @p gap
+  /// from it along its outward normal n), if a new contact may start that deep (or it was
+  /// closed in the last step), the angle fits against the edge, and the vertex behind the
+  /// edge entered through it (entered()).
+  void add_vertex_edge(int v, int m, double t, double gap, const Point2& n) {
     ContactCandidate candidate;
     candidate.slave = v;
     candidate.master = m;
@@ -365,6 +459,8 @@ private:
     if (gap < -options_.penetration && !kept(candidate))
       return;
     if (!fits_against(wedge(v), n, sin_overlap_))
+      return;
+    if (gap < -rounding_ && !entered(convex_end_faces(m), b_.position[at(v)], gap))
       return;
     ++vertex_edge_;
     add(candidate);
@@ -460,16 +556,8 @@ private:
       const double t = (b_.position[at(corner)] - c0).dot(edge) / edge.squaredNorm();
       const Point2 n = outward_normal(best);
       const double gap = n.dot(b_.position[at(corner)] - b_.position[at(best)]);
-      ContactCandidate candidate;
-      candidate.slave = corner;
-      candidate.master = best;
-      std::tie(candidate.end_face, candidate.end_beyond) = ends_edge_pair(corner, best, t);
-      if (gap > options_.distance || (gap < -options_.penetration && !kept(candidate)))
-        return;
-      if (!fits_against(wedge(corner), n, sin_overlap_))
-        return;
-      ++vertex_edge_;
-      add(candidate);
+      if (gap <= options_.distance)
+        add_vertex_edge(corner, best, t, gap, n);
       return;
     }
     if (lies_along_side(v, w) || lies_along_side(w, v))
