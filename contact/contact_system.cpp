@@ -414,6 +414,12 @@ int ContactSystem::n_closed() const {
                                         [](const ContactPoint& p) { return closed(p.mode); }));
 }
 
+int ContactSystem::n_sliding() const {
+  return static_cast<int>(std::count_if(points_.begin(), points_.end(), [](const ContactPoint& p) {
+    return p.mode == ContactMode::slide;
+  }));
+}
+
 std::vector<ContactSystem::Place> ContactSystem::current_places(const Model& model) const {
   // The boundary numbered as begin_step() numbers it, at its current place.
   const ContactBoundary now = contact_boundary(model);

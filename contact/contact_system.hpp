@@ -241,6 +241,8 @@ public:
 
   /// Closed contact points now.
   [[nodiscard]] int n_closed() const;
+  /// Closed contact points sliding now (ContactMode::slide).
+  [[nodiscard]] int n_sliding() const;
   /// Largest penetration of the springs of a closed contact after the last solve (offset -
   /// gap: an angle contact found already penetrating counts from its offset), m.
   [[nodiscard]] double max_penetration() const;

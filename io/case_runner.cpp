@@ -1103,6 +1103,9 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   const double end_time = spec.analysis.end_time.value_or(std::numeric_limits<double>::infinity());
   const long every = std::max(1, spec.output.every);
   const long checkpoint_every = spec.output.checkpoint_every;
+  const double start_time = stepper.time();
+  const long start_step = step;
+  CutCounts cuts;
   try {
     if (!restored)
       write_step(0);
@@ -1129,6 +1132,10 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
         progress.end_time = end_time;
         progress.wall_seconds = seconds_since(start);
         progress.step_cuts = stepper.counters().step_cuts;
+        cuts.add(report);
+        progress.cuts = cuts;
+        progress.start_time = start_time;
+        progress.start_step = start_step;
         options.on_step(progress);
       }
     }

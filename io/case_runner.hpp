@@ -116,6 +116,24 @@ private:
 /// How run_case() ended when it returns normally (a failure throws).
 enum class RunStatus { completed, interrupted };
 
+/// Step cuts by reason (StepReport::cuts_open_close ...).
+struct CutCounts {
+  long open_close = 0;   ///< the open-close iteration did not converge
+  long displacement = 0; ///< the step moved further than the step displacement limit
+  long energy = 0;       ///< the energy check
+  long not_finite = 0;   ///< a step displacement was not finite
+  [[nodiscard]] long total() const noexcept {
+    return open_close + displacement + energy + not_finite;
+  }
+  /// Adds the cuts of the step @p report.
+  void add(const StepReport& report) noexcept {
+    open_close += report.cuts_open_close;
+    displacement += report.cuts_displacement;
+    energy += report.cuts_energy;
+    not_finite += report.cuts_not_finite;
+  }
+};
+
 /// One completed step, for a progress display.
 struct RunProgress {
   const StepReport* report = nullptr;
@@ -125,8 +143,17 @@ struct RunProgress {
   double end_time = 0.0;
   /// Since run_case() started, s.
   double wall_seconds = 0.0;
-  /// Step cuts so far.
+  /// Step cuts so far (those before a restart included).
   long step_cuts = 0;
+  /// The cuts of the steps since run_case() started, by reason (a restart does not know the
+  /// reasons of the cuts before it: they are step_cuts - cuts.total()).
+  CutCounts cuts;
+  /// Simulated time and step when run_case() started (0, or the checkpoint's), s.
+  double start_time = 0.0;
+  long start_step = 0;
+  /// The energy balance's part of the state line (ProgressPrinter), already formatted; empty:
+  /// the state line has none. Left empty by run_case() until the run has an energy balance.
+  std::string energy_balance;
 };
 
 /// Options of run_case().

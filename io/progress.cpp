@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
+#include <utility>
 
 namespace nmm {
 
@@ -35,24 +37,87 @@ std::string duration_text(double seconds) {
   return text;
 }
 
-std::string progress_text(const RunProgress& progress) {
+void EtaEstimate::start(double time, long step) {
+  now_ = {0.0, time, step};
+  samples_.assign(1, now_);
+}
+
+void EtaEstimate::add(double wall_seconds, double time, long step) {
+  now_ = {wall_seconds, time, step};
+  // Samples about window_ / 32 apart keep the list short however fast the steps come.
+  if (samples_.empty() || wall_seconds - samples_.back().wall >= window_ / 32.0)
+    samples_.push_back(now_);
+  // The base is the latest sample at least a window old (the start before there is one).
+  while (samples_.size() > 1 && samples_[1].wall <= wall_seconds - window_)
+    samples_.erase(samples_.begin());
+}
+
+double EtaEstimate::seconds_left(long steps, double end_time) const {
+  constexpr double unknown = std::numeric_limits<double>::quiet_NaN();
+  if (samples_.empty())
+    return unknown;
+  const Sample& base = samples_.front();
+  const double wall = now_.wall - base.wall;
+  double left = std::numeric_limits<double>::infinity();
+  if (std::isfinite(end_time) && now_.time > base.time)
+    left = std::max(end_time - now_.time, 0.0) * wall / (now_.time - base.time);
+  if (steps > 0 && now_.step > base.step)
+    left = std::min(left, static_cast<double>(std::max(steps - now_.step, 0L)) * wall /
+                              static_cast<double>(now_.step - base.step));
+  return wall > 0.0 && std::isfinite(left) ? left : unknown;
+}
+
+std::string cut_reasons_text(const CutCounts& cuts, long earlier) {
+  const std::pair<const char*, long> parts[] = {{"open-close", cuts.open_close},
+                                                {"displacement", cuts.displacement},
+                                                {"energy", cuts.energy},
+                                                {"not finite", cuts.not_finite},
+                                                {"before the restart", earlier}};
+  std::string text;
+  for (const auto& [reason, n] : parts) {
+    if (n <= 0)
+      continue;
+    if (!text.empty())
+      text += ", ";
+    text += std::string(reason) + ' ' + std::to_string(n);
+  }
+  return text;
+}
+
+std::string progress_text(const RunProgress& progress, double eta_seconds) {
   const StepReport& r = *progress.report;
   std::ostringstream out;
   out << "step " << r.step << '/' << progress.steps << "  t = " << number_text(r.time, 6)
-      << " s  dt = " << number_text(r.dt, 3) << " s  open-close " << r.open_close_iterations
-      << "  contacts " << r.contacts;
-  if (progress.step_cuts > 0)
-    out << "  cuts " << progress.step_cuts;
-  double done =
-      progress.steps > 0 ? static_cast<double>(r.step) / static_cast<double>(progress.steps) : 0.0;
-  if (std::isfinite(progress.end_time) && progress.end_time > 0.0)
-    done = std::max(done, r.time / progress.end_time);
-  done = std::min(done, 1.0);
-  out << "  ETA ";
-  if (done > 0.0 && progress.wall_seconds > 0.0)
-    out << duration_text(progress.wall_seconds * (1.0 - done) / done);
+      << " s  dt = " << number_text(r.dt, 3) << " s  open-close ";
+  if (r.open_close_limit > 0)
+    out << r.open_close_counted << '/' << r.open_close_limit;
   else
-    out << '?';
+    out << r.open_close_iterations;
+  out << "  contacts " << r.contacts;
+  if (progress.step_cuts > 0)
+    out << "  cuts " << progress.step_cuts << " ("
+        << cut_reasons_text(progress.cuts, progress.step_cuts - progress.cuts.total()) << ')';
+  out << "  ETA " << duration_text(eta_seconds);
+  return out.str();
+}
+
+std::string state_text(const RunProgress& progress, const CutCounts& cuts, long since) {
+  const StepReport& r = *progress.report;
+  std::ostringstream out;
+  out << "step " << r.step << " t = " << number_text(r.time, 6) << " s: ";
+  if (r.contacts == 0)
+    out << "no contact closed";
+  else
+    out << r.contacts << (r.contacts == 1 ? " contact" : " contacts") << " closed, " << r.sliding
+        << " sliding, deepest penetration " << number_text(r.max_penetration, 2) << " m";
+  const long n = cuts.total();
+  out << "; " << (n == 0 ? std::string("no") : std::to_string(n)) << (n == 1 ? " cut" : " cuts")
+      << " since step " << since;
+  if (n > 0)
+    out << " (" << cut_reasons_text(cuts) << ')';
+  // The energy balance (work of the loads against the energies) is not computed here.
+  if (!progress.energy_balance.empty())
+    out << "; " << progress.energy_balance;
   return out.str();
 }
 
@@ -71,16 +136,42 @@ void ProgressPrinter::warning(std::string_view text) {
 }
 
 void ProgressPrinter::step(const RunProgress& progress, bool force) {
+  if (mode_ == ProgressMode::quiet)
+    return;
+  const StepReport& report = *progress.report;
+  if (!started_) {
+    eta_.start(progress.start_time, progress.start_step);
+    state_since_ = progress.start_step;
+    started_ = true;
+  }
+  eta_.add(progress.wall_seconds, report.time, report.step);
+  state_cuts_.add(report);
+  if (progress.wall_seconds - last_state_ >= state_interval) {
+    // On its own line, never overwritten: on a terminal it replaces the progress line, which
+    // comes back below it.
+    last_state_ = progress.wall_seconds;
+    if (mode_ == ProgressMode::terminal)
+      out_ << '\r' << state_text(progress, state_cuts_, state_since_) << "\033[K\n";
+    else
+      out_ << state_text(progress, state_cuts_, state_since_) << '\n';
+    out_ << std::flush;
+    line_open_ = false;
+    state_since_ = report.step;
+    state_cuts_ = {};
+    force = true;
+  }
   const double interval = mode_ == ProgressMode::terminal ? 0.1 : 2.0;
-  if (mode_ == ProgressMode::quiet || (!force && progress.wall_seconds - last_print_ < interval))
+  if (!force && progress.wall_seconds - last_print_ < interval)
     return;
   last_print_ = progress.wall_seconds;
+  const std::string text =
+      progress_text(progress, eta_.seconds_left(progress.steps, progress.end_time));
   if (mode_ == ProgressMode::terminal) {
     // Carriage return, the line, then erase whatever a longer previous line left.
-    out_ << '\r' << progress_text(progress) << "\033[K" << std::flush;
+    out_ << '\r' << text << "\033[K" << std::flush;
     line_open_ = true;
   } else {
-    out_ << progress_text(progress) << '\n' << std::flush;
+    out_ << text << '\n' << std::flush;
   }
 }
 

@@ -181,6 +181,11 @@ OpenCloseIteration::OpenCloseIteration(const StepContext& context,
   if (context_.contact)
     base_values_.assign(matrix_.values().begin(), matrix_.values().end());
   result_.converged = !context_.contact;
+  // The limit of a try that converges before is_spent() judges it (a settling static step's
+  // tenfold limit is known only once a solve has moved less than its 1%); none without
+  // contact, which has no open-close iteration.
+  if (context_.contact)
+    result_.limit = context_.options.open_close_max * (context_.kind.equilibrium ? 10 : 1);
   // An iterative solver's first guess: Shi's step displacement d = v dt + a dt^2 / 2 with
   // the last step's acceleration (zero in static steps); then each open-close iteration
   // starts from the last one's solution. At 10,004 DDA blocks falling from rest the guess
@@ -236,6 +241,7 @@ OpenCloseResult OpenCloseIteration::run() {
     result_.converged = true;
     warn_penetration(context_, contact->max_penetration(), contact->options(), true);
   }
+  result_.counted = open_close_;
   return result_;
 }
 
@@ -375,9 +381,10 @@ bool OpenCloseIteration::is_spent(const ModeUpdate& update) {
   const bool settling =
       kind.equilibrium ||
       (!kind.dynamic && context_.model.largest_displacement(raw_) < 0.01 * kind.limit);
-  return assemble_ ? open_close_ >= options.open_close_max * (settling ? 10 : 1) ||
-                         result_.factorisations >= 10 * options.open_close_max
-                   : ++friction_solves_ >= options.friction_solves_max;
+  result_.limit = options.open_close_max * (settling ? 10 : 1);
+  return assemble_
+             ? open_close_ >= result_.limit || result_.factorisations >= 10 * options.open_close_max
+             : ++friction_solves_ >= options.friction_solves_max;
 }
 
 } // namespace

@@ -19,6 +19,9 @@ struct OpenCloseResult {
   int factorisations = 0;    ///< refactorisations of the step matrix
   bool had_friction = false; ///< a sliding contact with friction in some iteration
   bool not_finite = false;   ///< a solve gave a step displacement that is not finite
+  /// Iterations that changed a contact's mode, counted against @c limit (StepReport).
+  int counted = 0;
+  int limit = 0;
 };
 
 /// Iterates the try @p tries of @p system to convergence or to the iteration budget

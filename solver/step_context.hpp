@@ -40,6 +40,11 @@ struct StepTries {
   /// as loads from the last iteration is tried again that way before it is cut.
   bool coupled = false;
   int cuts = 0; ///< times the step was cut (StepReport::step_cuts)
+  /// The cuts by reason (StepReport::cuts_open_close ...).
+  int cuts_open_close = 0;
+  int cuts_displacement = 0;
+  int cuts_energy = 0;
+  int cuts_not_finite = 0;
 };
 
 /// The stepper's inputs and outputs for one step, shared by its parts. The references are

@@ -65,13 +65,14 @@ double inertial_time_step(const StepContext& context) {
   return std::sqrt(2.0 * limit / 9.81);
 }
 
-/// Cuts the step to the time step @p dt, or returns false when it was cut max_step_cuts
-/// times already.
-bool cut(const StepContext& context, StepTries& tries, double dt) {
+/// Cuts the step to the time step @p dt, counting the cut under @p reason (one of
+/// StepTries' cuts_*), or returns false when it was cut max_step_cuts times already.
+bool cut(const StepContext& context, StepTries& tries, double dt, int StepTries::*reason) {
   if (tries.cuts >= context.options.max_step_cuts)
     return false;
   tries.dt = dt;
   ++tries.cuts;
+  ++(tries.*reason);
   ++context.counters.step_cuts;
   return true;
 }
@@ -117,7 +118,7 @@ judge_iteration(const StepContext& context, const OpenCloseResult& iteration, St
   const bool equilibrium = context.kind.equilibrium;
   if (iteration.not_finite) {
     // A shorter step is a better-conditioned system (the mass term grows as 1/dt²).
-    if (!equilibrium && cut(context, tries, tries.dt / 3.0))
+    if (!equilibrium && cut(context, tries, tries.dt / 3.0, &StepTries::cuts_not_finite))
       return TryVerdict::again;
     if (equilibrium) // (TimeStepper::equilibrate() says where)
       throw NumericalError("the step displacement is not finite");
@@ -137,7 +138,7 @@ judge_iteration(const StepContext& context, const OpenCloseResult& iteration, St
     return TryVerdict::again;
   }
   // Shi 8.2: not converged within the allowed iterations: the step is cut to a third.
-  if (!equilibrium && cut(context, tries, tries.dt / 3.0))
+  if (!equilibrium && cut(context, tries, tries.dt / 3.0, &StepTries::cuts_open_close))
     return TryVerdict::again;
   const std::string where =
       equilibrium ? "the open-close iteration does not converge in " +
@@ -160,7 +161,8 @@ TryVerdict judge_displacement(const StepContext& context, TrySolution& solution,
   if (!(largest > limit && context.kind.inertial))
     return TryVerdict::accept;
   const bool fixed = context.options.time_step.has_value();
-  if (!fixed && cut(context, tries, tries.dt * std::max(0.1, 0.9 * limit / largest)))
+  if (!fixed && cut(context, tries, tries.dt * std::max(0.1, 0.9 * limit / largest),
+                    &StepTries::cuts_displacement))
     return TryVerdict::again;
   if (fixed && context.warnings.empty()) {
     std::ostringstream w;
@@ -198,7 +200,7 @@ TryVerdict judge_energy(const StepContext& context,
   const double kinetic = kinetic_energy(model, element_mass, solution.new_velocity);
   const double budget = std::max(energy.start_energy + energy.load_work + solution.work, 0.0);
   if (kinetic > 10.0 * budget + std::numeric_limits<double>::min()) {
-    if (cut(context, tries, tries.dt / 3.0))
+    if (cut(context, tries, tries.dt / 3.0, &StepTries::cuts_energy))
       return TryVerdict::again;
     throw NumericalError(
         energy_message(model, solution.new_velocity, context.step, kinetic, budget));

@@ -215,6 +215,8 @@ TrySolution TimeStepper::try_until_accepted(const StepContext& context,
     const OpenCloseResult iteration =
         iterate_open_close(context, tries, impl_->system, system, clock, solution.raw);
     report.open_close_iterations = iteration.iterations;
+    report.open_close_counted = iteration.counted;
+    report.open_close_limit = iteration.limit;
     if (judge_iteration(context, iteration, tries) == TryVerdict::again ||
         judge_displacement(context, solution, tries) == TryVerdict::again)
       continue;
@@ -224,6 +226,10 @@ TrySolution TimeStepper::try_until_accepted(const StepContext& context,
       break;
   }
   report.step_cuts = tries.cuts;
+  report.cuts_open_close = tries.cuts_open_close;
+  report.cuts_displacement = tries.cuts_displacement;
+  report.cuts_energy = tries.cuts_energy;
+  report.cuts_not_finite = tries.cuts_not_finite;
   report.max_displacement = solution.largest;
   report.kinetic_energy = solution.kinetic;
   return solution;
@@ -246,6 +252,7 @@ void TimeStepper::commit_step(const StepKind& kind,
     // Closed contacts carry over with the kinematics of this step (before the geometry moves).
     impl_->contact->end_step(model_, raw);
     report.contacts = impl_->contact->n_closed();
+    report.sliding = impl_->contact->n_sliding();
     report.max_penetration = impl_->contact->max_penetration();
     // Of the solve the step ends on (after augmented-Lagrange passes, the converged one kept).
     const FrictionHolds held = impl_->contact->holds();

@@ -94,6 +94,18 @@ struct StepReport {
   /// motions that turned back against it in the step (ModeUpdate::slide_feed), J (per metre
   /// in plane strain); 0: friction opposed every slide.
   double slide_feed = 0.0;
+  // Why the step was cut and how close its iteration came to its limit (the progress line,
+  // io/progress.hpp); the cuts by reason add up to step_cuts.
+  int cuts_open_close = 0;   ///< cuts because the open-close iteration did not converge
+  int cuts_displacement = 0; ///< cuts to the step displacement limit (Shi 8.5)
+  int cuts_energy = 0;       ///< cuts by the energy check (judge_energy())
+  int cuts_not_finite = 0;   ///< cuts because a solve's step displacement was not finite
+  /// Open-close iterations of the last try that count against the limit (those that changed
+  /// a contact's mode), and that limit: open_close_max, ten times it for a settling step;
+  /// 0 without contact (no open-close iteration).
+  int open_close_counted = 0;
+  int open_close_limit = 0;
+  int sliding = 0; ///< closed contact points sliding at the end of the step
 };
 
 /// Work counters, for summary.json (issue 8: "skip what the scene does not need").

@@ -353,19 +353,126 @@ TEST(Progress, TextShowsStepTimeStepContactsAndAnEstimate) {
   report.time = 0.05;
   report.dt = 1e-3;
   report.open_close_iterations = 3;
+  report.open_close_counted = 2;
+  report.open_close_limit = 6;
   report.contacts = 12;
   RunProgress progress;
   progress.report = &report;
   progress.steps = 200;
   progress.end_time = std::numeric_limits<double>::infinity();
-  progress.wall_seconds = 10.0;
-  EXPECT_EQ(progress_text(progress),
-            "step 50/200  t = 0.05 s  dt = 0.001 s  open-close 3  contacts 12  ETA 30 s");
+  EtaEstimate eta;
+  eta.start(0.0, 0);
+  eta.add(10.0, report.time, report.step);
+  EXPECT_EQ(progress_text(progress, eta.seconds_left(progress.steps, progress.end_time)),
+            "step 50/200  t = 0.05 s  dt = 0.001 s  open-close 2/6  contacts 12  ETA 30 s");
   // end_time ends the run first: the estimate follows simulated time.
-  progress.end_time = 0.1;
-  EXPECT_NE(progress_text(progress).find("ETA 10 s"), std::string::npos);
-  progress.wall_seconds = 0.0;
-  EXPECT_NE(progress_text(progress).find("ETA ?"), std::string::npos);
+  EXPECT_DOUBLE_EQ(eta.seconds_left(200, 0.1), 10.0);
+  // Nothing to extrapolate from yet.
+  EtaEstimate fresh;
+  fresh.start(0.0, 0);
+  EXPECT_NE(progress_text(progress, fresh.seconds_left(200, 0.1)).find("ETA ?"), std::string::npos);
+}
+
+TEST(Progress, LineSaysWhyStepsWereCut) {
+  StepReport report;
+  report.step = 7;
+  report.open_close_counted = 6;
+  report.open_close_limit = 60; // a settling static step: ten times open_close_max
+  RunProgress progress;
+  progress.report = &report;
+  progress.steps = 10;
+  progress.step_cuts = 4;
+  progress.cuts.open_close = 2;
+  progress.cuts.displacement = 1;
+  progress.cuts.energy = 1;
+  const std::string text = progress_text(progress, 5.0);
+  EXPECT_NE(text.find("open-close 6/60"), std::string::npos) << text;
+  EXPECT_NE(text.find("cuts 4 (open-close 2, displacement 1, energy 1)  ETA 5.00 s"),
+            std::string::npos)
+      << text;
+  // After a restart the cuts before it have no known reason.
+  progress.step_cuts = 6;
+  progress.cuts = {};
+  progress.cuts.not_finite = 1;
+  EXPECT_NE(progress_text(progress, 5.0).find("cuts 6 (not finite 1, before the restart 5)"),
+            std::string::npos)
+      << progress_text(progress, 5.0);
+  EXPECT_EQ(cut_reasons_text(CutCounts{}), "");
+}
+
+TEST(Progress, EstimateCountsEndTimeAndTheRecentCutSteps) {
+  // 100 s of steps of 0.01 s at 0.1 s each (10 s of wall time per simulated second), then
+  // 60 s of steps cut to a third, each with its cut tries: 0.2 s for 1/300 s (60 s per
+  // simulated second). end_time 20 s ends the run long before its 10^6 steps.
+  EtaEstimate eta;
+  eta.start(0.0, 0);
+  double wall = 0.0;
+  double time = 0.0;
+  long step = 0;
+  for (int k = 0; k < 1000; ++k)
+    eta.add(wall += 0.1, time += 0.01, ++step);
+  EXPECT_NEAR(eta.seconds_left(1000000, 20.0), 10.0 * 10.0, 1e-6);
+  for (int k = 0; k < 300; ++k)
+    eta.add(wall += 0.2, time += 0.01 / 3.0, ++step);
+  // The last 30 s are all cut steps: 60 s per simulated second for the 9 s still to go. A
+  // step count (1300 steps in 160 s) would say about 1.2e5 s, the run's average rate 131 s.
+  EXPECT_NEAR(eta.seconds_left(1000000, 20.0), 9.0 * 60.0, 0.5);
+  // Without end_time the steps still to go, at the recent 0.2 s each.
+  EXPECT_NEAR(eta.seconds_left(1400, std::numeric_limits<double>::infinity()), 100 * 0.2, 1e-3);
+  // The run ends at whichever comes first: 100 steps more is less than 9 s of time.
+  EXPECT_NEAR(eta.seconds_left(1400, 20.0), 100 * 0.2, 1e-3);
+  // A restart starts from the checkpoint's time and step.
+  EtaEstimate restarted;
+  restarted.start(11.0, 1300);
+  restarted.add(2.0, 11.0 + 0.1, 1330);
+  EXPECT_NEAR(restarted.seconds_left(1000000, 20.0), 8.9 * 20.0, 1e-6);
+}
+
+TEST(Progress, StateLineComesOnItsOwnLineEveryThirtySeconds) {
+  StepReport report;
+  report.contacts = 114;
+  report.sliding = 37;
+  report.max_penetration = 3.14e-8;
+  RunProgress progress;
+  progress.report = &report;
+  progress.steps = 100000;
+  progress.end_time = std::numeric_limits<double>::infinity();
+  const auto run = [&](ProgressMode mode) {
+    std::ostringstream out;
+    ProgressPrinter printer(out, mode);
+    for (int k = 0; k < 1300; ++k) { // a step every 1/16 s: 81 s
+      report.step = k + 1;
+      report.time = 5e-4 * (k + 1);
+      report.cuts_open_close = k == 700 ? 1 : 0;
+      report.cuts_displacement = k == 800 ? 2 : 0;
+      progress.wall_seconds = 0.0625 * (k + 1);
+      printer.step(progress, false);
+    }
+    printer.finish();
+    return out.str();
+  };
+  const std::string lines = run(ProgressMode::lines);
+  EXPECT_EQ(lines.find('\r'), std::string::npos) << "no carriage return in a log";
+  EXPECT_EQ(lines.find('\033'), std::string::npos) << "no terminal control in a log";
+  const std::string first = "step 480 t = 0.24 s: 114 contacts closed, 37 sliding, deepest "
+                            "penetration 3.1e-08 m; no cuts since step 0\n";
+  const std::string second = "step 960 t = 0.48 s: 114 contacts closed, 37 sliding, deepest "
+                             "penetration 3.1e-08 m; 3 cuts since step 480 (open-close 1, "
+                             "displacement 2)\n";
+  EXPECT_NE(lines.find("\n" + first), std::string::npos) << lines;
+  EXPECT_NE(lines.find("\n" + second), std::string::npos) << lines;
+  const std::string terminal = run(ProgressMode::terminal);
+  // On a terminal the state line takes the progress line's place and ends it.
+  EXPECT_NE(terminal.find('\r' + first.substr(0, first.size() - 1) + "\033[K\n"), std::string::npos)
+      << terminal;
+  EXPECT_NE(terminal.find(second.substr(0, second.size() - 1) + "\033[K\n"), std::string::npos);
+
+  // The energy balance's part, when the run has one.
+  progress.energy_balance = "energy balance: (its own words)";
+  report.contacts = 0;
+  EXPECT_EQ(state_text(progress, CutCounts{}, 1200),
+            "step 1300 t = 0.65 s: no contact closed; no cuts since step 1200; energy balance: "
+            "(its own words)");
 }
 
 TEST(Progress, PlainLinesComeAboutEveryTwoSecondsAndQuietPrintsNothing) {
