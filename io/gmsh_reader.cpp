@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/gmsh_reader.hpp"
 
+#include "io/gmsh_internal.hpp"
 #include "io/text.hpp"
 #include "mesh/cover_mesher.hpp"
 #include "mesh/curve_resolution.hpp"
@@ -16,10 +17,8 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cerrno>
 #include <chrono>
-#include <clocale>
 #include <cmath>
 #include <csignal>
 #include <cstddef>
@@ -29,7 +28,6 @@
 #include <regex>
 #include <set>
 #include <sstream>
-#include <stdexcept>
 #include <thread>
 #include <unordered_map>
 #include <utility>
@@ -39,9 +37,8 @@ namespace nmm {
 
 namespace {
 
+using detail::run_gmsh;
 using Point3 = Eigen::Vector3d;
-
-std::atomic<bool> session_alive{false};
 
 // ----------------------------------------------------------------------------------------
 // Message helpers
@@ -54,70 +51,6 @@ std::string tag_list(const std::vector<int>& tags) {
   if (shown < tags.size())
     text += ", ... (" + std::to_string(tags.size()) + " in all)";
   return text;
-}
-
-// ----------------------------------------------------------------------------------------
-// gmsh errors. The session sets General.AbortOnError = 0, so gmsh logs errors and carries on;
-// we read them back from the logger after each call that can fail on user input.
-
-/// Errors gmsh logs from construction on. Restarting the logger empties it, which keeps
-/// logger::get() (a full copy) cheap.
-class GmshErrorLog {
-public:
-  GmshErrorLog() {
-    gmsh::logger::stop();
-    gmsh::logger::start();
-  }
-
-  [[nodiscard]] std::vector<std::string> errors() const {
-    std::vector<std::string> log;
-    gmsh::logger::get(log);
-    std::vector<std::string> result;
-    const std::string prefix = "Error: ";
-    for (const std::string& line : log) {
-      if (line.rfind(prefix, 0) == 0)
-        result.push_back(line.substr(prefix.size()));
-    }
-    return result;
-  }
-};
-
-[[noreturn]] void throw_gmsh_error(const std::string& file,
-                                   const std::string& doing,
-                                   const std::vector<std::string>& errors) {
-  const std::string& first = errors.front();
-  const std::string more =
-      errors.size() > 1
-          ? " (gmsh reported " + std::to_string(errors.size() - 1) + " more error(s) after this)"
-          : std::string();
-  // gmsh's .geo parser writes "'FILE', line N: what"; keep FILE (it may be an included file)
-  // and N so that editors can jump there.
-  static const std::regex located(R"('([^']*)', line ([0-9]+): (.*))");
-  std::smatch match;
-  if (std::regex_search(first, match, located)) {
-    const int line = std::stoi(match[2].str());
-    throw InputError(match[1].str(), line, 0,
-                     "gmsh: " + match[3].str() + more +
-                         "; fix the file there (gmsh names the line where it noticed the "
-                         "problem, which can be just after the actual mistake)");
-  }
-  throw InputError(file + ": gmsh could not " + doing + ": " + first + more);
-}
-
-/// Runs @p action and turns whatever gmsh reports into an InputError about @p file.
-template <class Action>
-void run_gmsh(const std::string& file, const std::string& doing, Action&& action) {
-  const GmshErrorLog log;
-  try {
-    action();
-  } catch (const std::string& message) {
-    // Only when a .geo file turned General.AbortOnError back on: gmsh then throws its
-    // message as a std::string.
-    throw_gmsh_error(file, doing, {message});
-  }
-  const std::vector<std::string> errors = log.errors();
-  if (!errors.empty())
-    throw_gmsh_error(file, doing, errors);
 }
 
 // ----------------------------------------------------------------------------------------
@@ -1214,47 +1147,6 @@ MathMesh triangulate_physical_mesh(const std::string& file,
 }
 
 } // namespace
-
-// ------------------------------------------------------------------------------------------
-// GmshSession
-
-GmshSession::GmshSession() {
-  bool expected = false;
-  if (!session_alive.compare_exchange_strong(expected, true)) {
-    throw std::logic_error("nmm::GmshSession: a gmsh session is already alive; gmsh has one "
-                           "global state, so keep a single GmshSession at a time");
-  }
-  const char* locale = std::setlocale(LC_ALL, nullptr);
-  saved_locale_ = locale != nullptr ? locale : "C";
-  try {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    // Errors go to the log (read back by run_gmsh) instead of being thrown: an exception out
-    // of gmsh 4.8's .geo parser leaves it unusable for the rest of the process.
-    gmsh::option::setNumber("General.AbortOnError", 0);
-    // Errors and warnings only: the log is copied whenever we look at it.
-    gmsh::option::setNumber("General.Verbosity", 2);
-    gmsh::option::setNumber("General.NumThreads", 1);
-    gmsh::logger::start();
-  } catch (...) {
-    std::setlocale(LC_ALL, saved_locale_.c_str());
-    session_alive = false;
-    throw;
-  }
-}
-
-GmshSession::~GmshSession() {
-  try {
-    gmsh::logger::stop();
-    gmsh::finalize();
-  } catch (...) {
-    // A destructor must not throw; gmsh has nothing left for us to release.
-  }
-  std::setlocale(LC_ALL, saved_locale_.c_str());
-  session_alive = false;
-}
-
-bool GmshSession::is_alive() noexcept { return session_alive.load(); }
 
 // ------------------------------------------------------------------------------------------
 

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// io/gmsh_internal.hpp — what the io/gmsh_*.cpp files behind io/gmsh_reader.hpp share.
+// Included only from those files: it brings in gmsh's API.
+#pragma once
+
+#include <gmsh.h>
+
+#include <string>
+#include <vector>
+
+namespace nmm::detail {
+
+// ----------------------------------------------------------------------------------------
+// gmsh errors (gmsh_session.cpp). The session sets General.AbortOnError = 0, so gmsh logs
+// errors and carries on; we read them back from the logger after each call that can fail on
+// user input.
+
+/// Errors gmsh logs from construction on. Restarting the logger empties it, which keeps
+/// logger::get() (a full copy) cheap.
+class GmshErrorLog {
+public:
+  GmshErrorLog() {
+    gmsh::logger::stop();
+    gmsh::logger::start();
+  }
+
+  [[nodiscard]] std::vector<std::string> errors() const {
+    std::vector<std::string> log;
+    gmsh::logger::get(log);
+    std::vector<std::string> result;
+    const std::string prefix = "Error: ";
+    for (const std::string& line : log) {
+      if (line.rfind(prefix, 0) == 0)
+        result.push_back(line.substr(prefix.size()));
+    }
+    return result;
+  }
+};
+
+/// Throws the InputError for the gmsh @p errors (the first one, and how many more) met while
+/// @p doing something with @p file; at the file and line gmsh names, when it names one.
+[[noreturn]] void throw_gmsh_error(const std::string& file,
+                                   const std::string& doing,
+                                   const std::vector<std::string>& errors);
+
+/// Runs @p action and turns whatever gmsh reports into an InputError about @p file.
+template <class Action>
+void run_gmsh(const std::string& file, const std::string& doing, Action&& action) {
+  const GmshErrorLog log;
+  try {
+    action();
+  } catch (const std::string& message) {
+    // Only when a .geo file turned General.AbortOnError back on: gmsh then throws its
+    // message as a std::string.
+    throw_gmsh_error(file, doing, {message});
+  }
+  const std::vector<std::string> errors = log.errors();
+  if (!errors.empty())
+    throw_gmsh_error(file, doing, errors);
+}
+
+} // namespace nmm::detail
