@@ -3,8 +3,11 @@
 // Included only from those files: it brings in gmsh's API.
 #pragma once
 
+#include "io/gmsh_reader.hpp"
+
 #include <gmsh.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -58,5 +61,15 @@ void run_gmsh(const std::string& file, const std::string& doing, Action&& action
   if (!errors.empty())
     throw_gmsh_error(file, doing, errors);
 }
+
+// ----------------------------------------------------------------------------------------
+// Limits on reading a .geo (gmsh_geo_limits.cpp)
+
+/// Reads the .geo @p file in a child process with @p options' time and memory limits, and
+/// returns when it was read within them (whatever gmsh reported: the read in this process
+/// reports it). The child dies with this process (PR_SET_PDEATHSIG), so a Ctrl-C that stops
+/// nmm stops it too.
+/// @throws InputError when the child is stopped at the time limit or runs out of memory.
+void read_within_limits(const std::filesystem::path& file, const GeometryReadOptions& options);
 
 } // namespace nmm::detail
