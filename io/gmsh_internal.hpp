@@ -63,6 +63,23 @@ void run_gmsh(const std::string& file, const std::string& doing, Action&& action
 }
 
 // ----------------------------------------------------------------------------------------
+// Geometry files (gmsh_file.cpp)
+
+enum class GmshFileKind { geo, msh };
+
+/// The kind of geometry @p file, by its extension.
+/// @throws InputError when the file is missing, not a regular file, of another extension or
+/// unreadable.
+GmshFileKind check_geometry_file(const std::filesystem::path& file);
+
+/// Opens @p file (of @p kind, check_geometry_file()) as gmsh's current model, a .geo first
+/// checked for `Exit` and read within @p options' limits (read_within_limits()).
+/// @throws InputError with what gmsh reports.
+void open_model(const std::filesystem::path& file,
+                GmshFileKind kind,
+                const GeometryReadOptions& options = {});
+
+// ----------------------------------------------------------------------------------------
 // Limits on reading a .geo (gmsh_geo_limits.cpp)
 
 /// Reads the .geo @p file in a child process with @p options' time and memory limits, and
