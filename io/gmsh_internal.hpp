@@ -4,11 +4,16 @@
 #pragma once
 
 #include "io/gmsh_reader.hpp"
+#include "mesh/geometry.hpp"
 
+#include <Eigen/Core>
 #include <gmsh.h>
 
+#include <cstddef>
 #include <filesystem>
+#include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 namespace nmm::detail {
@@ -88,5 +93,48 @@ void open_model(const std::filesystem::path& file,
 /// nmm stops it too.
 /// @throws InputError when the child is stopped at the time limit or runs out of memory.
 void read_within_limits(const std::filesystem::path& file, const GeometryReadOptions& options);
+
+// ----------------------------------------------------------------------------------------
+// The current model (gmsh_model.cpp)
+
+using Point3 = Eigen::Vector3d;
+
+inline Point2 planar(const Point3& p) { return {p.x(), p.y()}; }
+
+/// @p tags as "1, 2, 3", the first 12 and how many in all when there are more.
+std::string tag_list(const std::vector<int>& tags);
+
+/// A physical group of the model: its tag, its name and the tags of its entities.
+struct PhysicalGroup {
+  int tag = 0;
+  std::string name;
+  std::vector<int> entities;
+};
+
+/// The physical groups of dimension @p dim, in gmsh's order; an unnamed one is called
+/// @p unnamed_prefix + "_" + its tag.
+std::vector<PhysicalGroup> physical_groups(int dim, const std::string& unnamed_prefix);
+
+/// The tags of the model's entities of dimension @p dim.
+std::set<int> entity_tags(int dim);
+
+/// Throws the InputError for a model of @p file without Physical Surface: which surfaces
+/// and Physical Curves it has, and how to name the materials.
+[[noreturn]] void throw_no_physical_surface(const std::string& file);
+
+/// 2D or 1D elements of one entity as lists of corner (primary) nodes.
+std::vector<std::vector<std::size_t>> element_corners(int dim, int tag);
+
+/// Coordinates of every mesh node of the current model, by node tag.
+class NodeTable {
+public:
+  /// @throws InputError when the model has no node @p tag.
+  const Point3& at(std::size_t tag);
+
+private:
+  void load();
+  std::unordered_map<std::size_t, Point3> coordinates_;
+  bool loaded_ = false;
+};
 
 } // namespace nmm::detail
