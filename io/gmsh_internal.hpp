@@ -68,6 +68,13 @@ void run_gmsh(const std::string& file, const std::string& doing, Action&& action
 }
 
 // ----------------------------------------------------------------------------------------
+// Reading options (gmsh_reader.cpp)
+
+/// @throws InputError about @p file when @p options' curve tolerance is negative or not
+/// finite.
+void check_tolerance(const std::string& file, const GeometryReadOptions& options);
+
+// ----------------------------------------------------------------------------------------
 // Geometry files (gmsh_file.cpp)
 
 enum class GmshFileKind { geo, msh };
