@@ -5,15 +5,20 @@
 
 #include "io/gmsh_reader.hpp"
 #include "mesh/geometry.hpp"
+#include "mesh/physical_mesh.hpp"
 
 #include <Eigen/Core>
 #include <gmsh.h>
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
+#include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace nmm::detail {
@@ -142,6 +147,88 @@ private:
   void load();
   std::unordered_map<std::size_t, Point3> coordinates_;
   bool loaded_ = false;
+};
+
+// ----------------------------------------------------------------------------------------
+// Chaining edges (curves between end points, or mesh edges between nodes) into paths and
+// loops (gmsh_surface_loops.cpp). Shared by the loops of geometric surfaces and of meshed
+// (discrete) ones, and by the pieces of a discrete curve.
+
+struct Chain {
+  /// Edge index and whether it is walked from its first to its second node.
+  std::vector<std::pair<std::size_t, bool>> edges;
+  std::size_t first_node = 0;
+  std::size_t last_node = 0;
+  bool closed = false;
+};
+
+/// @p edges (pairs of node numbers) chained: open paths first, from an end, then loops.
+std::vector<Chain> chain_edges(const std::vector<std::array<std::size_t, 2>>& edges);
+
+// ----------------------------------------------------------------------------------------
+// Reading one model
+
+/// Reads the curves, surfaces and points of gmsh's current model into the plane; @p file
+/// names the model in messages. Curved curves are sampled within a tolerance, once per curve
+/// (gmsh_curves.cpp); surfaces become polygons of the loops of their outline
+/// (gmsh_surface_loops.cpp).
+class ModelReader {
+public:
+  /// @p max_chord: the longest chord of a sampled curve (m), 0 for no bound.
+  ModelReader(std::string file, double tolerance, double max_chord, double z_limit)
+      : file_(std::move(file)), tolerance_(tolerance), max_chord_(max_chord), z_limit_(z_limit) {}
+
+  /// True when curve @p tag (read already) stands for a curve that its polyline only
+  /// approximates: a curved gmsh curve sampled here, or the mesh of a discrete curve.
+  [[nodiscard]] bool is_sampled(int tag) const { return sampled_.count(tag) > 0; }
+  /// The curves of the outline of geometric surface @p tag (read already).
+  [[nodiscard]] const std::vector<int>& outline(int tag) { return outlines_[tag]; }
+
+  /// The polylines of curve @p tag (one, except for a discrete curve whose mesh is in
+  /// pieces), in the curve's parametric direction, computed once per curve.
+  const std::vector<std::vector<Point2>>& curve(int tag, const std::string& context);
+
+  /// The polygon of surface @p tag of Physical Surface @p group: the loop of largest area
+  /// outside, the others its holes.
+  Polygon surface(int tag, const std::string& group);
+
+  /// The coordinates of point @p tag in the plane.
+  Point2 point(int tag, const std::string& context);
+
+private:
+  /// @p p in the plane z = 0. @throws InputError when it lies off the plane.
+  Point2 in_plane(const Point3& p, const std::string& context) const;
+
+  /// The points of curve @p tag at @p parameters.
+  std::vector<Point3> evaluate(int tag, const std::vector<double>& parameters) const;
+
+  /// The exact coordinates of the gmsh points at the start and end of curve @p tag, matched
+  /// to the curve's values at its parameter bounds (empty for a curve without end points).
+  std::optional<std::array<Point3, 2>>
+  end_points(int tag, const Point3& first, const Point3& last) const;
+
+  /// The polyline of a gmsh curve of @p type with a parametrisation: the end points of a
+  /// Line, otherwise chords subdivided until within the tolerance (and the longest chord).
+  std::vector<Point3>
+  parametric_curve(int tag, const std::string& type, const std::string& context);
+
+  /// The polylines of the line elements of discrete curve @p tag.
+  std::vector<std::vector<Point3>> discrete_curve(int tag, const std::string& context);
+
+  /// The loops of geometric surface @p tag from its boundary curves (recorded in outline()).
+  std::vector<Loop> curve_loops(int tag, const std::string& context);
+
+  /// The loops of discrete surface @p tag: the boundary edges of its mesh.
+  std::vector<Loop> discrete_loops(int tag, const std::string& context);
+
+  std::string file_;
+  double tolerance_;
+  double max_chord_;
+  double z_limit_;
+  std::map<int, std::vector<std::vector<Point2>>> curves_;
+  std::set<int> sampled_;
+  std::map<int, std::vector<int>> outlines_;
+  NodeTable nodes_;
 };
 
 } // namespace nmm::detail

@@ -40,17 +40,9 @@ using detail::run_gmsh;
 using detail::tag_list;
 using detail::throw_no_physical_surface;
 
-// ----------------------------------------------------------------------------------------
-// Chaining edges (curves between end points, or mesh edges between nodes) into paths and
-// loops. Shared by the loops of geometric surfaces and of meshed (discrete) ones.
+} // namespace
 
-struct Chain {
-  /// Edge index and whether it is walked from its first to its second node.
-  std::vector<std::pair<std::size_t, bool>> edges;
-  std::size_t first_node = 0;
-  std::size_t last_node = 0;
-  bool closed = false;
-};
+namespace detail {
 
 std::vector<Chain> chain_edges(const std::vector<std::array<std::size_t, 2>>& edges) {
   std::unordered_map<std::size_t, std::vector<std::size_t>> incident;
@@ -107,370 +99,149 @@ std::vector<Chain> chain_edges(const std::vector<std::array<std::size_t, 2>>& ed
   return chains;
 }
 
-// ----------------------------------------------------------------------------------------
-// Reading one model: sampled curves (cached per curve), surface loops, named groups.
-
-/// Per initial chord, at most 2^16 subdivisions: enough for a 1e-9 relative tolerance on a
-/// circle, and bounded work on a curve gmsh evaluates badly.
-constexpr int max_subdivision_depth = 16;
-
-double distance_to_segment(const Point3& q, const Point3& a, const Point3& b) {
-  const Point3 ab = b - a;
-  const double length_squared = ab.squaredNorm();
-  if (length_squared == 0.0)
-    return (q - a).norm();
-  const double s = std::clamp((q - a).dot(ab) / length_squared, 0.0, 1.0);
-  return (q - (a + s * ab)).norm();
+Polygon ModelReader::surface(int tag, const std::string& group) {
+  std::string type;
+  gmsh::model::getType(2, tag, type);
+  const std::string context =
+      "Physical Surface \"" + group + "\" (gmsh surface " + std::to_string(tag) + ")";
+  std::vector<Loop> loops =
+      type == "Discrete surface" ? discrete_loops(tag, context) : curve_loops(tag, context);
+  if (loops.empty())
+    throw InputError(file_ + ": " + context +
+                     " has no boundary curves; define it from a closed Curve Loop");
+  // The loop enclosing the others has the largest area; validate_physical_mesh() checks
+  // that the holes do lie inside it.
+  const auto outer = std::max_element(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) {
+    return std::abs(signed_area(a)) < std::abs(signed_area(b));
+  });
+  Polygon polygon;
+  polygon.outer = std::move(*outer);
+  loops.erase(outer);
+  polygon.holes = std::move(loops);
+  return polygon;
 }
 
-class ModelReader {
-public:
-  /// @p max_chord: the longest chord of a sampled curve (m), 0 for no bound.
-  ModelReader(std::string file, double tolerance, double max_chord, double z_limit)
-      : file_(std::move(file)), tolerance_(tolerance), max_chord_(max_chord), z_limit_(z_limit) {}
-
-  /// True when curve @p tag (read already) stands for a curve that its polyline only
-  /// approximates: a curved gmsh curve sampled here, or the mesh of a discrete curve.
-  [[nodiscard]] bool is_sampled(int tag) const { return sampled_.count(tag) > 0; }
-  /// The curves of the outline of geometric surface @p tag (read already).
-  [[nodiscard]] const std::vector<int>& outline(int tag) { return outlines_[tag]; }
-
-  /// The polylines of curve @p tag (one, except for a discrete curve whose mesh is in
-  /// pieces), in the curve's parametric direction, computed once per curve.
-  const std::vector<std::vector<Point2>>& curve(int tag, const std::string& context) {
-    const auto found = curves_.find(tag);
-    if (found != curves_.end())
-      return found->second;
-    std::string type;
-    gmsh::model::getType(1, tag, type);
-    std::vector<std::vector<Point3>> polylines;
-    if (type == "Discrete curve")
-      polylines = discrete_curve(tag, context);
-    else
-      polylines.push_back(parametric_curve(tag, type, context));
-    if (type != "Line")
-      sampled_.insert(tag);
-    std::vector<std::vector<Point2>> result;
-    for (const std::vector<Point3>& polyline : polylines) {
-      std::vector<Point2>& points = result.emplace_back();
-      for (const Point3& p : polyline)
-        points.push_back(in_plane(p, context));
+std::vector<Loop> ModelReader::curve_loops(int tag, const std::string& context) {
+  gmsh::vectorpair boundary;
+  gmsh::model::getBoundary({{2, tag}}, boundary, false, true, false);
+  // A curve listed twice (a slit traversed both ways) lies inside the surface: not part of
+  // its outline. Curves embedded with "In Surface" are not listed at all.
+  std::map<int, int> count;
+  for (const auto& dim_tag : boundary)
+    ++count[std::abs(dim_tag.second)];
+  std::vector<std::vector<Point2>> pieces;
+  std::vector<int> piece_curve;
+  for (const auto& dim_tag : boundary) {
+    const int curve_tag = std::abs(dim_tag.second);
+    if (count[curve_tag] != 1)
+      continue;
+    outlines_[tag].push_back(curve_tag);
+    for (const std::vector<Point2>& polyline : curve(curve_tag, context)) {
+      std::vector<Point2>& piece = pieces.emplace_back(polyline);
+      if (dim_tag.second < 0)
+        std::reverse(piece.begin(), piece.end());
+      piece_curve.push_back(curve_tag);
     }
-    return curves_.emplace(tag, std::move(result)).first->second;
   }
+  // End points are exact gmsh point coordinates, so equal coordinates mean a shared point.
+  std::map<std::pair<double, double>, std::size_t> node_of;
+  std::vector<Point2> node_point;
+  auto node = [&](const Point2& p) {
+    const auto [it, inserted] = node_of.try_emplace({p.x(), p.y()}, node_point.size());
+    if (inserted)
+      node_point.push_back(p);
+    return it->second;
+  };
+  std::vector<std::array<std::size_t, 2>> edges;
+  for (const std::vector<Point2>& piece : pieces)
+    edges.push_back({node(piece.front()), node(piece.back())});
 
-  Polygon surface(int tag, const std::string& group) {
-    std::string type;
-    gmsh::model::getType(2, tag, type);
-    const std::string context =
-        "Physical Surface \"" + group + "\" (gmsh surface " + std::to_string(tag) + ")";
-    std::vector<Loop> loops =
-        type == "Discrete surface" ? discrete_loops(tag, context) : curve_loops(tag, context);
-    if (loops.empty())
-      throw InputError(file_ + ": " + context +
-                       " has no boundary curves; define it from a closed Curve Loop");
-    // The loop enclosing the others has the largest area; validate_physical_mesh() checks
-    // that the holes do lie inside it.
-    const auto outer =
-        std::max_element(loops.begin(), loops.end(), [](const Loop& a, const Loop& b) {
-          return std::abs(signed_area(a)) < std::abs(signed_area(b));
-        });
-    Polygon polygon;
-    polygon.outer = std::move(*outer);
-    loops.erase(outer);
-    polygon.holes = std::move(loops);
-    return polygon;
+  std::vector<Loop> loops;
+  std::vector<std::string> loose_ends;
+  std::vector<int> open_curves;
+  for (const Chain& chain : chain_edges(edges)) {
+    if (!chain.closed) {
+      loose_ends.push_back(point_text(node_point[chain.first_node]));
+      loose_ends.push_back(point_text(node_point[chain.last_node]));
+      for (const auto& step : chain.edges)
+        open_curves.push_back(piece_curve[step.first]);
+      continue;
+    }
+    Loop& loop = loops.emplace_back();
+    for (const auto& [edge, forward] : chain.edges) {
+      const std::vector<Point2>& piece = pieces[edge];
+      // Every piece but the last point, which is the next piece's first.
+      if (forward)
+        loop.insert(loop.end(), piece.begin(), piece.end() - 1);
+      else
+        loop.insert(loop.end(), piece.rbegin(), piece.rend() - 1);
+    }
   }
-
-  Point2 point(int tag, const std::string& context) {
-    std::vector<double> xyz;
-    gmsh::model::getValue(0, tag, {}, xyz);
-    if (xyz.size() < 3)
-      throw InputError(file_ + ": " + context + ": gmsh cannot give the coordinates of point " +
-                       std::to_string(tag));
-    return in_plane(Point3(xyz[0], xyz[1], xyz[2]), context);
+  if (!open_curves.empty()) {
+    std::string ends;
+    for (std::size_t i = 0; i < loose_ends.size() && i < 6; ++i)
+      ends += (i > 0 ? (i + 1 == loose_ends.size() ? " and " : ", ") : "") + loose_ends[i];
+    throw InputError(file_ + ": " + context + ": the boundary does not close: curves " +
+                     tag_list(open_curves) + " leave loose ends at " + ends +
+                     "; make consecutive curves of each Curve Loop share their end Point "
+                     "(Coherence in the built-in kernel, BooleanFragments in OpenCASCADE)");
   }
+  return loops;
+}
 
-private:
-  Point2 in_plane(const Point3& p, const std::string& context) const {
-    if (!(std::abs(p.z()) <= z_limit_)) {
-      throw InputError(file_ + ": " + context + ": the point " + point_text(planar(p)) +
-                       " has z = " + number_text(p.z(), 10) +
-                       "; nmm is two-dimensional: draw the whole geometry in the plane z = 0");
-    }
-    return planar(p);
+std::vector<Loop> ModelReader::discrete_loops(int tag, const std::string& context) {
+  const std::vector<std::vector<std::size_t>> elements = element_corners(2, tag);
+  if (elements.empty()) {
+    throw InputError(file_ + ": " + context +
+                     " comes from a mesh but has no 2D elements; mesh it (gmsh -2) before "
+                     "saving the .msh");
   }
-
-  std::vector<Point3> evaluate(int tag, const std::vector<double>& parameters) const {
-    std::vector<double> xyz;
-    gmsh::model::getValue(1, tag, parameters, xyz);
-    if (xyz.size() != 3 * parameters.size())
-      throw InputError(file_ + ": gmsh cannot evaluate curve " + std::to_string(tag));
-    std::vector<Point3> points;
-    points.reserve(parameters.size());
-    for (std::size_t i = 0; i < parameters.size(); ++i)
-      points.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    return points;
+  // Boundary edges of the surface mesh are those used by one element only; kept in the
+  // order of first use so that loops come out the same on every run.
+  struct EdgeUse {
+    std::array<std::size_t, 2> directed;
+    std::size_t first_use;
+    int count;
+  };
+  std::map<std::pair<std::size_t, std::size_t>, EdgeUse> uses;
+  std::size_t order = 0;
+  for (const std::vector<std::size_t>& element : elements) {
+    for (std::size_t i = 0; i < element.size(); ++i) {
+      const std::size_t a = element[i];
+      const std::size_t b = element[(i + 1) % element.size()];
+      const auto found =
+          uses.try_emplace({std::min(a, b), std::max(a, b)}, EdgeUse{{a, b}, order++, 0}).first;
+      ++found->second.count;
+    }
   }
-
-  /// The exact coordinates of the gmsh points at the start and end of curve @p tag, matched
-  /// to the curve's values at its parameter bounds (empty for a curve without end points).
-  std::optional<std::array<Point3, 2>>
-  end_points(int tag, const Point3& first, const Point3& last) const {
-    gmsh::vectorpair boundary;
-    gmsh::model::getBoundary({{1, tag}}, boundary, false, false, false);
-    std::vector<Point3> points;
-    for (const auto& dim_tag : boundary) {
-      std::vector<double> xyz;
-      gmsh::model::getValue(0, std::abs(dim_tag.second), {}, xyz);
-      if (xyz.size() == 3)
-        points.emplace_back(xyz[0], xyz[1], xyz[2]);
-    }
-    if (points.empty())
-      return std::nullopt;
-    if (points.size() == 1)
-      return std::array<Point3, 2>{points[0], points[0]};
-    const double straight = (points[0] - first).norm() + (points[1] - last).norm();
-    const double crossed = (points[1] - first).norm() + (points[0] - last).norm();
-    if (straight <= crossed)
-      return std::array<Point3, 2>{points[0], points[1]};
-    return std::array<Point3, 2>{points[1], points[0]};
+  std::vector<EdgeUse> boundary;
+  for (const auto& use : uses) {
+    if (use.second.count == 1)
+      boundary.push_back(use.second);
   }
-
-  std::vector<Point3>
-  parametric_curve(int tag, const std::string& type, const std::string& context) {
-    std::vector<double> low;
-    std::vector<double> high;
-    gmsh::model::getParametrizationBounds(1, tag, low, high);
-    if (low.empty() || high.empty() || !(high[0] > low[0]))
-      throw InputError(file_ + ": " + context + ": gmsh gives curve " + std::to_string(tag) + " (" +
-                       type + ") no parameter range; redraw the curve");
-    const double t0 = low[0];
-    const double t1 = high[0];
-    const std::vector<Point3> bounds = evaluate(tag, {t0, t1});
-    const auto ends = end_points(tag, bounds[0], bounds[1]);
-    const Point3 start = ends ? (*ends)[0] : bounds[0];
-    const Point3 end = ends ? (*ends)[1] : bounds[1];
-    if (type == "Line")
-      return {start, end};
-
-    // Adaptive subdivision, one level at a time so that gmsh evaluates each level in one
-    // call. A closed curve starts from 4 chords so that its first chord is not a point.
-    const bool closed = (end - start).norm() == 0.0;
-    const int initial = closed ? 4 : 1;
-    std::map<double, Point3> samples;
-    std::vector<double> parameters;
-    for (int i = 0; i <= initial; ++i)
-      parameters.push_back(i == initial ? t1 : t0 + (t1 - t0) * i / initial);
-    const std::vector<Point3> initial_points = evaluate(tag, parameters);
-    for (std::size_t i = 0; i < parameters.size(); ++i)
-      samples.emplace(parameters[i], initial_points[i]);
-
-    struct Piece {
-      double t0;
-      double t1;
-      int depth;
-    };
-    std::vector<Piece> pending;
-    for (int i = 0; i < initial; ++i)
-      pending.push_back({parameters[static_cast<std::size_t>(i)],
-                         parameters[static_cast<std::size_t>(i) + 1], 0});
-    double unresolved = 0.0;
-    while (!pending.empty()) {
-      std::vector<double> inner;
-      inner.reserve(3 * pending.size());
-      for (const Piece& piece : pending) {
-        for (int k = 1; k <= 3; ++k)
-          inner.push_back(piece.t0 + (piece.t1 - piece.t0) * k / 4.0);
-      }
-      const std::vector<Point3> values = evaluate(tag, inner);
-      std::vector<Piece> next;
-      for (std::size_t p = 0; p < pending.size(); ++p) {
-        const Piece& piece = pending[p];
-        const Point3& a = samples.at(piece.t0);
-        const Point3& b = samples.at(piece.t1);
-        double deviation = 0.0;
-        for (std::size_t k = 0; k < 3; ++k)
-          deviation = std::max(deviation, distance_to_segment(values[3 * p + k], a, b));
-        const bool too_long = max_chord_ > 0.0 && (b - a).norm() > max_chord_;
-        if (deviation <= tolerance_ && !too_long)
-          continue;
-        if (piece.depth >= max_subdivision_depth) {
-          if (deviation > tolerance_)
-            unresolved = std::max(unresolved, deviation);
-          continue;
-        }
-        const double middle = inner[3 * p + 1];
-        samples.emplace(middle, values[3 * p + 1]);
-        next.push_back({piece.t0, middle, piece.depth + 1});
-        next.push_back({middle, piece.t1, piece.depth + 1});
-      }
-      pending = std::move(next);
-    }
-    if (unresolved > 0.0) {
-      throw InputError(file_ + ": " + context + ": curve " + std::to_string(tag) + " (" + type +
-                       ") still deviates by " + number_text(unresolved, 10) +
-                       " m from its chords after " + std::to_string(1 << max_subdivision_depth) +
-                       " subdivisions, more than the curve tolerance of " +
-                       number_text(tolerance_, 10) +
-                       " m; raise the curve tolerance or check that the curve is smooth");
-    }
-    std::vector<Point3> points;
-    points.reserve(samples.size());
-    for (const auto& sample : samples)
-      points.push_back(sample.second);
-    points.front() = start;
-    points.back() = end;
-    return points;
+  std::sort(boundary.begin(), boundary.end(),
+            [](const EdgeUse& a, const EdgeUse& b) { return a.first_use < b.first_use; });
+  std::vector<std::array<std::size_t, 2>> edges;
+  for (const EdgeUse& use : boundary)
+    edges.push_back(use.directed);
+  std::vector<Loop> loops;
+  for (const Chain& chain : chain_edges(edges)) {
+    if (!chain.closed)
+      throw InputError(file_ + ": " + context + ": the boundary of its mesh does not close near " +
+                       point_text(planar(nodes_.at(chain.first_node))) +
+                       "; save the mesh again from gmsh");
+    Loop& loop = loops.emplace_back();
+    for (const auto& [edge, forward] : chain.edges)
+      loop.push_back(in_plane(nodes_.at(edges[edge][forward ? 0 : 1]), context));
   }
+  return loops;
+}
 
-  std::vector<std::vector<Point3>> discrete_curve(int tag, const std::string& context) {
-    const std::vector<std::vector<std::size_t>> lines = element_corners(1, tag);
-    if (lines.empty()) {
-      throw InputError(file_ + ": " + context + ": curve " + std::to_string(tag) +
-                       " comes from a mesh but has no line elements; mesh it (gmsh -2) and "
-                       "keep its elements when saving (Physical Curve or Mesh.SaveAll = 1)");
-    }
-    std::vector<std::array<std::size_t, 2>> edges;
-    for (const std::vector<std::size_t>& line : lines) {
-      if (line.size() >= 2)
-        edges.push_back({line[0], line[1]});
-    }
-    std::vector<std::vector<Point3>> polylines;
-    for (const Chain& chain : chain_edges(edges)) {
-      std::vector<Point3>& points = polylines.emplace_back();
-      points.push_back(nodes_.at(chain.first_node));
-      for (const auto& [edge, forward] : chain.edges)
-        points.push_back(nodes_.at(edges[edge][forward ? 1 : 0]));
-    }
-    return polylines;
-  }
+} // namespace detail
 
-  std::vector<Loop> curve_loops(int tag, const std::string& context) {
-    gmsh::vectorpair boundary;
-    gmsh::model::getBoundary({{2, tag}}, boundary, false, true, false);
-    // A curve listed twice (a slit traversed both ways) lies inside the surface: not part of
-    // its outline. Curves embedded with "In Surface" are not listed at all.
-    std::map<int, int> count;
-    for (const auto& dim_tag : boundary)
-      ++count[std::abs(dim_tag.second)];
-    std::vector<std::vector<Point2>> pieces;
-    std::vector<int> piece_curve;
-    for (const auto& dim_tag : boundary) {
-      const int curve_tag = std::abs(dim_tag.second);
-      if (count[curve_tag] != 1)
-        continue;
-      outlines_[tag].push_back(curve_tag);
-      for (const std::vector<Point2>& polyline : curve(curve_tag, context)) {
-        std::vector<Point2>& piece = pieces.emplace_back(polyline);
-        if (dim_tag.second < 0)
-          std::reverse(piece.begin(), piece.end());
-        piece_curve.push_back(curve_tag);
-      }
-    }
-    // End points are exact gmsh point coordinates, so equal coordinates mean a shared point.
-    std::map<std::pair<double, double>, std::size_t> node_of;
-    std::vector<Point2> node_point;
-    auto node = [&](const Point2& p) {
-      const auto [it, inserted] = node_of.try_emplace({p.x(), p.y()}, node_point.size());
-      if (inserted)
-        node_point.push_back(p);
-      return it->second;
-    };
-    std::vector<std::array<std::size_t, 2>> edges;
-    for (const std::vector<Point2>& piece : pieces)
-      edges.push_back({node(piece.front()), node(piece.back())});
+namespace {
 
-    std::vector<Loop> loops;
-    std::vector<std::string> loose_ends;
-    std::vector<int> open_curves;
-    for (const Chain& chain : chain_edges(edges)) {
-      if (!chain.closed) {
-        loose_ends.push_back(point_text(node_point[chain.first_node]));
-        loose_ends.push_back(point_text(node_point[chain.last_node]));
-        for (const auto& step : chain.edges)
-          open_curves.push_back(piece_curve[step.first]);
-        continue;
-      }
-      Loop& loop = loops.emplace_back();
-      for (const auto& [edge, forward] : chain.edges) {
-        const std::vector<Point2>& piece = pieces[edge];
-        // Every piece but the last point, which is the next piece's first.
-        if (forward)
-          loop.insert(loop.end(), piece.begin(), piece.end() - 1);
-        else
-          loop.insert(loop.end(), piece.rbegin(), piece.rend() - 1);
-      }
-    }
-    if (!open_curves.empty()) {
-      std::string ends;
-      for (std::size_t i = 0; i < loose_ends.size() && i < 6; ++i)
-        ends += (i > 0 ? (i + 1 == loose_ends.size() ? " and " : ", ") : "") + loose_ends[i];
-      throw InputError(file_ + ": " + context + ": the boundary does not close: curves " +
-                       tag_list(open_curves) + " leave loose ends at " + ends +
-                       "; make consecutive curves of each Curve Loop share their end Point "
-                       "(Coherence in the built-in kernel, BooleanFragments in OpenCASCADE)");
-    }
-    return loops;
-  }
-
-  std::vector<Loop> discrete_loops(int tag, const std::string& context) {
-    const std::vector<std::vector<std::size_t>> elements = element_corners(2, tag);
-    if (elements.empty()) {
-      throw InputError(file_ + ": " + context +
-                       " comes from a mesh but has no 2D elements; mesh it (gmsh -2) before "
-                       "saving the .msh");
-    }
-    // Boundary edges of the surface mesh are those used by one element only; kept in the
-    // order of first use so that loops come out the same on every run.
-    struct EdgeUse {
-      std::array<std::size_t, 2> directed;
-      std::size_t first_use;
-      int count;
-    };
-    std::map<std::pair<std::size_t, std::size_t>, EdgeUse> uses;
-    std::size_t order = 0;
-    for (const std::vector<std::size_t>& element : elements) {
-      for (std::size_t i = 0; i < element.size(); ++i) {
-        const std::size_t a = element[i];
-        const std::size_t b = element[(i + 1) % element.size()];
-        const auto found =
-            uses.try_emplace({std::min(a, b), std::max(a, b)}, EdgeUse{{a, b}, order++, 0}).first;
-        ++found->second.count;
-      }
-    }
-    std::vector<EdgeUse> boundary;
-    for (const auto& use : uses) {
-      if (use.second.count == 1)
-        boundary.push_back(use.second);
-    }
-    std::sort(boundary.begin(), boundary.end(),
-              [](const EdgeUse& a, const EdgeUse& b) { return a.first_use < b.first_use; });
-    std::vector<std::array<std::size_t, 2>> edges;
-    for (const EdgeUse& use : boundary)
-      edges.push_back(use.directed);
-    std::vector<Loop> loops;
-    for (const Chain& chain : chain_edges(edges)) {
-      if (!chain.closed)
-        throw InputError(
-            file_ + ": " + context + ": the boundary of its mesh does not close near " +
-            point_text(planar(nodes_.at(chain.first_node))) + "; save the mesh again from gmsh");
-      Loop& loop = loops.emplace_back();
-      for (const auto& [edge, forward] : chain.edges)
-        loop.push_back(in_plane(nodes_.at(edges[edge][forward ? 0 : 1]), context));
-    }
-    return loops;
-  }
-
-  std::string file_;
-  double tolerance_;
-  double max_chord_;
-  double z_limit_;
-  std::map<int, std::vector<std::vector<Point2>>> curves_;
-  std::set<int> sampled_;
-  std::map<int, std::vector<int>> outlines_;
-  NodeTable nodes_;
-};
+using detail::ModelReader;
 
 /// Diagonal (in the plane) of the bounding box of the surfaces of all Physical Surfaces.
 double surfaces_diagonal(const std::vector<PhysicalGroup>& groups) {
