@@ -231,4 +231,18 @@ private:
   NodeTable nodes_;
 };
 
+// ----------------------------------------------------------------------------------------
+// Curves coarser than the cover mesh (gmsh_coarse_curves.cpp)
+
+/// One warning per Physical Curve, and per Physical Surface for its outline curves that no
+/// Physical Curve names, whose sampled or meshed curves are coarser than the cover mesh.
+/// @p reader has read @p physical from the groups @p surface_groups and @p curve_groups of
+/// @p file.
+std::vector<std::string> coarse_curve_warnings(const std::string& file,
+                                               ModelReader& reader,
+                                               const PhysicalMesh& physical,
+                                               const std::vector<PhysicalGroup>& surface_groups,
+                                               const std::vector<PhysicalGroup>& curve_groups,
+                                               double cover_size);
+
 } // namespace nmm::detail
