@@ -5,9 +5,8 @@
 #include "mesh/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <limits>
 #include <numbers>
 #include <numeric>
@@ -253,8 +252,6 @@ private:
     const Point2 n = outward_normal(f);
     const double ga = n.dot(a - c);
     const double gd = n.dot(d - c);
-    if (!behind_inside(e, f, lo, hi) || !behind_inside(f, e, lo_on(f, e), hi_on(f, e)))
-      return;
     // Gap at the ends of the overlap (linear in between).
     const double gap_lo = ga + (gd - ga) * ((lo - ta) / (td - ta));
     const double gap_hi = ga + (gd - ga) * ((hi - ta) / (td - ta));
@@ -277,6 +274,8 @@ private:
       return;
     if (low < -options_.penetration && !kept(candidate))
       return;
+    if (!behind_inside(e, f, lo, hi) || !behind_inside(f, e, lo_on(f, e), hi_on(f, e)))
+      return;
     if (edge_pairs_.insert(pair_key(e, f))) {
       ++edge_edge_;
       add(candidate);
@@ -298,14 +297,24 @@ private:
                                              (b_.position[at(b_.next[at(e)])] - c).dot(df)));
   }
 
-  /// The faces next to edge f at its convex ends (a point of each and its outward normal):
-  /// behind f is inside f's body only up to them.
-  std::vector<std::pair<Point2, Point2>> convex_end_faces(int f) const {
-    std::vector<std::pair<Point2, Point2>> faces;
+  /// The faces next to an edge at its convex ends, by a point of each and its outward
+  /// normal (no allocation: the detection asks for them for every pair it tests).
+  struct EndFaces {
+    std::array<std::pair<Point2, Point2>, 2> face;
+    int n = 0;
+    [[nodiscard]] const std::pair<Point2, Point2>* begin() const { return face.data(); }
+    [[nodiscard]] const std::pair<Point2, Point2>* end() const { return face.data() + n; }
+    [[nodiscard]] bool empty() const { return n == 0; }
+  };
+
+  /// The faces next to edge f at its convex ends: behind f is inside f's body only up to
+  /// them.
+  EndFaces convex_end_faces(int f) const {
+    EndFaces faces;
     for (const int end : {f, b_.next[at(f)]}) {
       if (angle_[at(end)] < std::numbers::pi - options_.angle_overlap)
-        faces.emplace_back(b_.position[at(end)],
-                           outward_normal(end == f ? b_.previous[at(f)] : b_.next[at(f)]));
+        faces.face[at(faces.n++)] = {
+            b_.position[at(end)], outward_normal(end == f ? b_.previous[at(f)] : b_.next[at(f)])};
     }
     return faces;
   }
@@ -320,8 +329,7 @@ private:
   /// part of its crack face; taken as contacts, they held a sliding wedge by a penetration it
   /// never had (issue 42, item 2). The corners that slid past each other enter by the sliding
   /// joint's faces instead.
-  bool
-  entered(const std::vector<std::pair<Point2, Point2>>& faces, const Point2& x, double gap) const {
+  bool entered(const EndFaces& faces, const Point2& x, double gap) const {
     return std::ranges::all_of(faces, [&](const std::pair<Point2, Point2>& face) {
       return face.second.dot(x - face.first) <= gap + rounding_;
     });
@@ -330,7 +338,7 @@ private:
   /// Whether more than a touching end of slave edge e's part over master f, [lo, hi] along
   /// f, lies in front of f or entered f's body through f (entered()).
   bool behind_inside(int e, int f, double lo, double hi) const {
-    const std::vector<std::pair<Point2, Point2>> faces = convex_end_faces(f);
+    const EndFaces faces = convex_end_faces(f);
     if (faces.empty())
       return true;
     const Point2& c = b_.position[at(f)];
