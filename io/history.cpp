@@ -174,15 +174,23 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
   const auto add = [&](int length) {
     row.append(field, static_cast<std::size_t>(std::clamp(length, 0, int{sizeof field} - 1)));
   };
-  add(std::snprintf(field, sizeof field, "%ld,%.17g,%.17g,%d,%d,%.17g", report.step, report.time,
-                    report.dt, report.open_close_iterations, report.contacts,
-                    report.kinetic_energy));
+  // One value a field: a field holds one number at full precision (%.17g is at most 24
+  // characters), never several (three of them could pass its 64 and be cut).
+  const auto number = [&](double value) {
+    add(std::snprintf(field, sizeof field, ",%.17g", value));
+  };
+  add(std::snprintf(field, sizeof field, "%ld", report.step));
+  number(report.time);
+  number(report.dt);
+  add(std::snprintf(field, sizeof field, ",%d,%d", report.open_close_iterations, report.contacts));
+  number(report.kinetic_energy);
   for (const MonitorValues& monitor : monitors)
     for (const double value : monitor.values())
-      add(std::snprintf(field, sizeof field, ",%.17g", value));
-  add(std::snprintf(field, sizeof field, ",%.17g,%d", report.load_work, report.step_cuts));
-  add(std::snprintf(field, sizeof field, ",%.17g,%.17g,%.17g", report.max_penetration,
-                    report.lock_excess, report.slide_feed));
+      number(value);
+  number(report.load_work);
+  add(std::snprintf(field, sizeof field, ",%d", report.step_cuts));
+  for (const double value : {report.max_penetration, report.lock_excess, report.slide_feed})
+    number(value);
   row += '\n';
   append(row, "the row of step " + std::to_string(report.step) + " (the rows before it stay)");
 }

@@ -90,6 +90,38 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   EXPECT_EQ(std::stod(fields[14]), -2.5e9);
 }
 
+TEST(History, RealsOfTheLongestTextReadBackWhole) {
+  // -1.2345678901234567e-305 is the longest text %.17g writes (24 characters): a row of
+  // them in every real column reads back bit for bit, none cut.
+  const TempDir dir("nmm_history_long");
+  const auto file = dir.path() / "history.csv";
+  HistoryWriter history(file, {"m"});
+  const double longest = -1.2345678901234567e-305;
+  StepReport report;
+  report.step = 123456789;
+  report.time = report.dt = report.kinetic_energy = report.load_work = longest;
+  report.max_penetration = report.lock_excess = report.slide_feed = longest;
+  report.open_close_iterations = report.contacts = report.step_cuts = 2147483647;
+  MonitorValues m;
+  m.x = m.y = m.ux = m.uy = m.vx = m.vy = m.sxx = m.syy = m.sxy = longest;
+  history.write_row(report, std::vector<MonitorValues>{m});
+  std::istringstream lines(read_text(file));
+  std::string row;
+  std::getline(lines, row);
+  std::getline(lines, row);
+  std::vector<std::string> fields;
+  std::istringstream cells(row);
+  for (std::string cell; std::getline(cells, cell, ',');)
+    fields.push_back(cell);
+  ASSERT_EQ(fields.size(), 6u + 9u + 5u);
+  for (const std::size_t i : {1, 2, 5, 6, 14, 15, 17, 18, 19}) {
+    EXPECT_EQ(fields[i].size(), 24u) << "column " << i;
+    EXPECT_EQ(std::stod(fields[i]), longest) << "column " << i;
+  }
+  EXPECT_EQ(fields[0], "123456789");
+  EXPECT_EQ(fields[16], "2147483647");
+}
+
 TEST(History, RowCutShortByAFileSizeLimitIsTakenBackAndTheErrorSaysWhy) {
   // A file-size limit (ulimit -f) of the header and two and a half rows: the third row is
   // cut by the kernel part way. It must leave the file as it was after the second row.
