@@ -246,6 +246,22 @@ public:
   /// Largest penetration of the springs of a closed contact after the last solve (offset -
   /// gap: an angle contact found already penetrating counts from its offset), m.
   [[nodiscard]] double max_penetration() const;
+  /// The springs' energy in the step of displacement @p raw (raw unknowns), J: at its start and
+  /// end, and what the springs lost or made in it (docs/formulation.md, "Energy balance").
+  struct SpringWork {
+    double start = 0.0; ///< energy of the springs at the start of the step
+    double end = 0.0;   ///< after the last solve
+    double lost = 0.0;  ///< dissipated by the time integration and by springs that let go
+    double made = 0.0;  ///< made by springs that started stretched while open
+  };
+  /// Of the points' springs in the modes begin_step() gave them and in their modes now: p g^2 / 2
+  /// of every closed normal spring and p s^2 / 2 of every locked shear spring, p the point's
+  /// stiffness (for edge-to-edge pairs the Gauss point's share of the integrated springs),
+  /// g and s its gap and shear displacement. Call before end_step().
+  [[nodiscard]] SpringWork spring_work(const Model& model, const Eigen::VectorXd& raw) const;
+  /// Work of friction in the step of displacement @p raw (raw unknowns): |S| times the
+  /// slip of every sliding contact point, J. Call before end_step().
+  [[nodiscard]] double friction_dissipation(const Model& model, const Eigen::VectorXd& raw) const;
   [[nodiscard]] const ContactCounters& counters() const noexcept { return counters_; }
   [[nodiscard]] const ContactOptions& options() const noexcept { return options_; }
   /// Where a point is now, in the model's current geometry (after the step's move), and the

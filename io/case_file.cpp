@@ -81,7 +81,10 @@ constexpr std::string_view analysis_keys[] = {"kind",
                                               "pcg_tolerance",
                                               "max_step_cuts",
                                               "end_time",
-                                              "initial_equilibrium"};
+                                              "initial_equilibrium",
+                                              "energy_tolerance",
+                                              "energy_error_limit",
+                                              "velocity_ratio"};
 constexpr std::string_view monitor_keys[] = {"name", "point"};
 constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every"};
 
@@ -867,6 +870,24 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
                     "it must be between 1e-15 and 1e-3: the residual of a conjugate-gradient "
                     "solve relative to its right-hand side");
   spec.max_step_cuts = view.small_integer_or("max_step_cuts", 10, 0, 50, "10");
+  spec.energy_tolerance =
+      view.number_or("energy_tolerance", spec.energy_tolerance, "a fraction", "0.05");
+  if (!(spec.energy_tolerance > 0.0 && spec.energy_tolerance <= 1.0))
+    view.fail_range("energy_tolerance", spec.energy_tolerance,
+                    "it must be > 0 and <= 1: the residual of the energy balance over its "
+                    "largest term above which a step warns");
+  spec.velocity_ratio = view.number_or("velocity_ratio", 1.0, "a fraction", "0.98");
+  if (!(spec.velocity_ratio > 0.0 && spec.velocity_ratio <= 1.0))
+    view.fail_range("velocity_ratio", spec.velocity_ratio,
+                    "it must be > 0 and <= 1: the fraction of the last step's velocities a "
+                    "dynamic step starts from (Shi's k01; 1 carries them over)");
+  spec.energy_error_limit = view.number("energy_error_limit", "a fraction", "0.5");
+  if (spec.energy_error_limit && !(*spec.energy_error_limit >= spec.energy_tolerance))
+    view.fail_range("energy_error_limit", *spec.energy_error_limit,
+                    "it must be >= energy_tolerance (" + number_text(spec.energy_tolerance, 3) +
+                        "): the residual of the energy balance over its largest term above "
+                        "which the run stops; remove the line to stop only at ten times the "
+                        "energy budget");
   spec.end_time = view.number("end_time", "s", "1.0");
   if (spec.end_time && !(*spec.end_time > 0.0))
     view.fail_range("end_time", *spec.end_time, "the end time must be > 0 (s)");

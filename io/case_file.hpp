@@ -178,6 +178,13 @@ struct AnalysisSpec {
   LinearSolverKind solver = LinearSolverKind::cholmod;
   /// Residual over right-hand side at which a conjugate-gradient solve stops (solver = "pcg").
   double pcg_tolerance = 1e-10;
+  /// Energy balance residual over its largest term above which a step warns, (0, 1]
+  /// (StepperOptions::energy_tolerance).
+  double energy_tolerance = 0.05;
+  /// ... and above which the run stops (>= energy_tolerance); empty: only the energy check.
+  std::optional<double> energy_error_limit;
+  /// Shi's dynamic ratio k01, (0, 1] (StepperOptions::velocity_ratio).
+  double velocity_ratio = 1.0;
   /// Most times a step may be cut (to a third, or to fit max_step_displacement) before the
   /// run stops, 0..50.
   int max_step_cuts = 10;

@@ -610,6 +610,9 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   options.spring_stiffness =
       spec_.analysis.penalty_stiffness.value_or(spec_.analysis.penalty * largest_young);
   options.max_step_cuts = spec_.analysis.max_step_cuts;
+  options.energy_tolerance = spec_.analysis.energy_tolerance;
+  options.energy_error_limit = spec_.analysis.energy_error_limit;
+  options.velocity_ratio = spec_.analysis.velocity_ratio;
   options.open_close_max = spec_.analysis.open_close_max;
   if (spec_.analysis.solver == LinearSolverKind::pcg)
     options.conjugate_gradients = PcgOptions{.tolerance = spec_.analysis.pcg_tolerance};
@@ -1106,6 +1109,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   const double start_time = stepper.time();
   const long start_step = step;
   CutCounts cuts;
+  std::size_t stepper_warnings = stepper.warnings().size(); // those restored were printed
   try {
     if (!restored)
       write_step(0);
@@ -1121,6 +1125,12 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       result.load_work = report.load_work;
       summary.max_penetration = std::max(summary.max_penetration, report.max_penetration);
       history->write_row(report, analysis.monitor_values());
+      // The stepper's warnings as they come (the energy balance's among them), not only in
+      // the final list.
+      for (; stepper_warnings < stepper.warnings().size(); ++stepper_warnings) {
+        if (options.on_warning)
+          options.on_warning(stepper.warnings()[stepper_warnings]);
+      }
       if (step % every == 0)
         write_step(step);
       if (checkpoint_every > 0 && step % checkpoint_every == 0)

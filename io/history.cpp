@@ -84,6 +84,7 @@ std::string history_header(std::span<const std::string> monitor_names) {
   }
   // Columns added after the first release go last: readers that count columns keep working.
   header += ",load_work,step_cuts,max_penetration,lock_excess,slide_feed";
+  header += ",external_work,strain_energy,contact_energy,dissipated_energy,energy_error";
   return header;
 }
 
@@ -189,7 +190,9 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
       number(value);
   number(report.load_work);
   add(std::snprintf(field, sizeof field, ",%d", report.step_cuts));
-  for (const double value : {report.max_penetration, report.lock_excess, report.slide_feed})
+  for (const double value :
+       {report.max_penetration, report.lock_excess, report.slide_feed, report.external_work,
+        report.strain_energy, report.contact_energy, report.dissipated_energy, report.energy_error})
     number(value);
   row += '\n';
   append(row, "the row of step " + std::to_string(report.step) + " (the rows before it stay)");

@@ -18,20 +18,10 @@ std::size_t at(int i) { return static_cast<std::size_t>(i); }
 /// Why a dynamic step is refused by the energy check, naming the fastest cover.
 std::string energy_message(
     const Model& model, const Eigen::VectorXd& velocity, long step, double kinetic, double budget) {
-  int fastest = 0;
-  double speed = 0.0;
-  for (int c = 0; c < model.n_covers(); ++c) {
-    const double v = Point2(velocity(model.dof(c, 0)), velocity(model.dof(c, 1))).norm();
-    if (v > speed) {
-      speed = v;
-      fastest = c;
-    }
-  }
   std::ostringstream message;
   message << "step " << step << ": the kinetic energy (" << kinetic
           << " J) exceeds ten times what the run started with plus the work of the loads ("
-          << budget << " J), even with the time step cut; the fastest cover (" << speed
-          << " m/s) is near " << point_text(model.covers[at(fastest)].position, 6)
+          << budget << " J), even with the time step cut; " << fastest_cover_text(model, velocity)
           << ": energy is coming from the contact springs there; try a smaller time_step or "
              "max_step_displacement, a smaller penalty, or a larger cover size near that point";
   return message.str();
@@ -78,6 +68,22 @@ bool cut(const StepContext& context, StepTries& tries, double dt, int StepTries:
 }
 
 } // namespace
+
+std::string fastest_cover_text(const Model& model, const Eigen::VectorXd& velocity) {
+  int fastest = 0;
+  double speed = 0.0;
+  for (int c = 0; c < model.n_covers(); ++c) {
+    const double v = Point2(velocity(model.dof(c, 0)), velocity(model.dof(c, 1))).norm();
+    if (v > speed) {
+      speed = v;
+      fastest = c;
+    }
+  }
+  std::ostringstream text;
+  text << "the fastest cover (" << speed << " m/s) is near "
+       << point_text(model.covers[at(fastest)].position, 6);
+  return text.str();
+}
 
 StepKind make_step_kind(const StepperOptions& options,
                         bool equilibrium,

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace nmm {
@@ -33,6 +34,7 @@ struct TrySolution {
   double work = 0.0;            ///< of the loads in the try, J
   double largest = 0.0;         ///< largest step displacement, m
   double kinetic = 0.0;         ///< kinetic energy of new_velocity (dynamic steps), J
+  Eigen::VectorXd external;     ///< StepSystem::external of the accepted try
 };
 
 /// A try's judgement: accepted, or to be made again (@p tries changed: cut or coupled).
@@ -72,6 +74,9 @@ judge_displacement(const StepContext& context, TrySolution& solution, StepTries&
                                       EnergyBudget& energy,
                                       TrySolution& solution,
                                       StepTries& tries);
+
+/// "the fastest cover (v m/s) is near (x, y)" of @p velocity (raw unknowns), for messages.
+[[nodiscard]] std::string fastest_cover_text(const Model& model, const Eigen::VectorXd& velocity);
 
 /// 1/2 v^T M v with the element masses @p element_mass (none: 0), J.
 [[nodiscard]] double kinetic_energy(const Model& model,

@@ -206,9 +206,16 @@ void assemble_element(const StepContext& context,
   const double t1 = context.time + dt;
   integrals.stiffness(elasticity_matrix(material), material.thickness_factor(), work.local);
   element_load(model, e, integrals, context.scene.body_loads, t1, work.loads);
+  // The carried stresses' part of the loads, for the energy balance.
+  Eigen::VectorXd& stress_load = state.element_stress_load[at(e)];
+  integrals.loads(Point2::Zero(), element.stress, material.thickness_factor(), stress_load);
+  integrals.add_stabilisation_load(element.stabilisation_force, stress_load);
+  state.element_stiffness[at(e)] = work.local;
   for (std::size_t i = 0; i < dofs.size(); ++i) {
-    system.f(dofs[i]) += work.loads(static_cast<Eigen::Index>(i));
-    system.loads(dofs[i]) += work.loads(static_cast<Eigen::Index>(i));
+    const auto k = static_cast<Eigen::Index>(i);
+    system.f(dofs[i]) += work.loads(k);
+    system.loads(dofs[i]) += work.loads(k);
+    system.external(dofs[i]) += work.loads(k) - stress_load(k);
   }
   if (context.kind.with_mass) {
     const double inertia = 2.0 / (dt * dt);
@@ -242,6 +249,9 @@ void assemble_step(const StepContext& context,
   for (const CurveLoad& load : scene.curve_loads)
     add_curve_load(model, load, t1, system.f);
   system.loads = system.f;
+  system.external = system.f;
+  state.element_stiffness.resize(model.elements.size());
+  state.element_stress_load.resize(model.elements.size());
   system.rhs_correction = Eigen::VectorXd::Zero(system.map->n_reduced());
   if (context.kind.with_mass)
     state.element_mass.resize(model.elements.size());

@@ -64,6 +64,11 @@ struct StepSystemState {
   /// Consistent mass of every element (times density and thickness), kept from the assembly
   /// for the kinetic energy of the new velocities.
   std::vector<ElementMass> element_mass;
+  /// Stiffness of every element (without the inertia) and its load of the carried stresses
+  /// and stabilisation forces, of the last try: the strain energy of the step's
+  /// displacement (energy_balance.hpp).
+  std::vector<Eigen::MatrixXd> element_stiffness;
+  std::vector<Eigen::VectorXd> element_stress_load;
   /// Reduced unknowns of every coupling, flat, with their starts: what the current plans
   /// were made for, compared to the next step's.
   std::vector<int> coupling_start;
@@ -95,6 +100,9 @@ struct StepSystem {
   /// The loads alone (point and curve loads, body forces, initial stresses; not the inertia
   /// load): they do the work of the energy check.
   Eigen::VectorXd loads;
+  /// Of those, the loads alone without the initial stresses and stabilisation forces (point
+  /// and curve loads, body forces): the external work of the energy balance.
+  Eigen::VectorXd external;
   /// Right side from the constants t0 of the reductions, reduced unknowns.
   Eigen::VectorXd rhs_correction;
   bool rebuilt = false; ///< the pattern was built for this try: a new symbolic analysis

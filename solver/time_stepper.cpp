@@ -6,6 +6,7 @@
 #include "mesh/error.hpp"
 #include "solver/assembler.hpp"
 #include "solver/cholmod_solver.hpp"
+#include "solver/energy_balance.hpp"
 #include "solver/geometry_update.hpp"
 #include "solver/open_close.hpp"
 #include "solver/step_context.hpp"
@@ -31,6 +32,7 @@ struct TimeStepper::Impl {
   Eigen::VectorXd acceleration; ///< (v1 - v0) / dt of the last step; zero after a static one
   StepSystemState system;       ///< what the step systems keep from step to step
   EnergyBudget energy;          ///< of the energy check
+  EnergyLedger ledger;          ///< of the energy balance
   /// Solver counters of the run before a restart.
   SolverCounters restored_counters;
 };
@@ -192,6 +194,10 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   if (!equilibrium)
     impl_->energy.load_work += solution.work;
   report.load_work = impl_->energy.load_work;
+  account_energy(context, impl_->system, solution.external, solution.raw, tries.dt,
+                 solution.kinetic, impl_->ledger, report);
+  if (!equilibrium)
+    judge_balance(context, report, solution.new_velocity, impl_->ledger.warned);
   clock.lap(counters_.seconds_step_control);
   commit_step(context.kind, tries.dt, solution, report);
   clock.lap(counters_.seconds_update);
@@ -222,8 +228,10 @@ TrySolution TimeStepper::try_until_accepted(const StepContext& context,
       continue;
     solution.work = system.loads.dot(solution.raw);
     if (judge_energy(context, impl_->system.element_mass, impl_->energy, solution, tries) ==
-        TryVerdict::accept)
+        TryVerdict::accept) {
+      solution.external = std::move(system.external);
       break;
+    }
   }
   report.step_cuts = tries.cuts;
   report.cuts_open_close = tries.cuts_open_close;
@@ -244,6 +252,8 @@ void TimeStepper::commit_step(const StepKind& kind,
   if (kind.dynamic) {
     impl_->acceleration = (solution.new_velocity - velocity_) / dt;
     velocity_ = std::move(solution.new_velocity);
+    if (options_.velocity_ratio < 1.0)
+      velocity_ *= options_.velocity_ratio; // Shi's k01; the acceleration keeps v1 - v0
   } else {
     velocity_.setZero();
     impl_->acceleration.setZero(velocity_.size());
@@ -355,6 +365,7 @@ void TimeStepper::save_state(StateWriter& out) const {
   out.put(impl_->energy.start_energy);
   out.put(impl_->energy.started);
   out.put(impl_->energy.load_work);
+  impl_->ledger.save_state(out);
   out.put(impl_->acceleration);
   impl_->system.save_state(out);
   out.put(impl_->contact != nullptr);
@@ -402,6 +413,7 @@ void TimeStepper::load_state(StateReader& in) {
   impl_->energy.start_energy = in.real();
   impl_->energy.started = in.boolean();
   impl_->energy.load_work = in.real();
+  impl_->ledger.load_state(in);
   impl_->acceleration = in.vector();
   if (impl_->acceleration.size() != model_.n_dofs())
     in.fail("its accelerations have " + std::to_string(impl_->acceleration.size()) +

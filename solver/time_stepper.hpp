@@ -58,6 +58,17 @@ struct StepperOptions {
   /// Solve the step systems by conjugate gradients with these settings (PcgSolver, CHOLMOD
   /// where they do not converge); empty: by CHOLMOD.
   std::optional<PcgOptions> conjugate_gradients;
+  /// A step whose energy balance misses by more than this fraction of its largest term
+  /// (StepReport::energy_error) adds a warning (the first such step of the run).
+  double energy_tolerance = 0.05;
+  /// A step whose energy balance misses by more than this stops the run (NumericalError);
+  /// empty: only the energy check's ten times the budget does (judge_energy()).
+  std::optional<double> energy_error_limit;
+  /// Shi's dynamic ratio k01: a dynamic step starts from this fraction of the last step's
+  /// end velocities, in (0, 1]; below 1 it damps the high-frequency flip of contact
+  /// springs at rest (v1 = 2d/dt - v0), the kinetic energy it removes counted as
+  /// dissipated (docs/formulation.md, "Energy balance"). 1: the velocities carry over.
+  double velocity_ratio = 1.0;
 };
 
 /// What stays defined through the run: supports, loads and the material points to follow.
@@ -106,6 +117,21 @@ struct StepReport {
   int open_close_counted = 0;
   int open_close_limit = 0;
   int sliding = 0; ///< closed contact points sliding at the end of the step
+  // Energy balance (docs/formulation.md, "Energy balance"), J (per metre in plane strain),
+  // measured from the start of the first time step (the initial equilibrium not counted).
+  /// Work of the loads alone (body forces, point and curve loads) since the first step.
+  double external_work = 0.0;
+  /// Change of the elements' elastic energy (stabilisation included) since the first step:
+  /// negative where initial stresses were released.
+  double strain_energy = 0.0;
+  /// Energy in the closed contacts' springs at the end of the step.
+  double contact_energy = 0.0;
+  /// Friction work at sliding contacts and the numerical dissipation of the time
+  /// integration in the elements, since the first step.
+  double dissipated_energy = 0.0;
+  /// |kinetic + strain + contact + dissipated - initial - external_work| over the largest
+  /// of those terms (0 when all are 0).
+  double energy_error = 0.0;
 };
 
 /// Work counters, for summary.json (issue 8: "skip what the scene does not need").

@@ -158,9 +158,10 @@ std::vector<std::vector<double>> read_history(const fs::path& file, const std::s
 
 const std::string monitor_columns =
     "tip.x,tip.y,tip.ux,tip.uy,tip.vx,tip.vy,tip.sxx,tip.syy,tip.sxy";
-const std::string history_columns = "step,time,dt,open_close_iterations,contacts,kinetic_energy," +
-                                    monitor_columns +
-                                    ",load_work,step_cuts,max_penetration,lock_excess,slide_feed";
+const std::string history_columns =
+    "step,time,dt,open_close_iterations,contacts,kinetic_energy," + monitor_columns +
+    ",load_work,step_cuts,max_penetration,lock_excess,slide_feed"
+    ",external_work,strain_energy,contact_energy,dissipated_energy,energy_error";
 
 // ---------------------------------------------------------------------------------------
 // The bundled example
@@ -258,8 +259,10 @@ TEST_F(Cli, BlockOnInclineSlidesTheAnalyticDistanceAndWritesItsContacts) {
   const std::string block = "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
                             "block.syy,block.sxy";
   const auto rows = read_history(
-      out / "history.csv", "step,time,dt,open_close_iterations,contacts,kinetic_energy," + block +
-                               ",load_work,step_cuts,max_penetration,lock_excess,slide_feed");
+      out / "history.csv",
+      "step,time,dt,open_close_iterations,contacts,kinetic_energy," + block +
+          ",load_work,step_cuts,max_penetration,lock_excess,slide_feed"
+          ",external_work,strain_energy,contact_energy,dissipated_energy,energy_error");
   ASSERT_FALSE(rows.empty());
   const std::vector<double>& last = rows.back();
   EXPECT_DOUBLE_EQ(last[1], 1.0);
@@ -467,7 +470,8 @@ TEST_F(Cli, OneWordTurnsTheInclineBlockIntoADdaOrVemBlock) {
         out / "history.csv",
         "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
         "block.x,block.y,block.ux,block.uy,block.vx,block.vy,block.sxx,"
-        "block.syy,block.sxy,load_work,step_cuts,max_penetration,lock_excess,slide_feed");
+        "block.syy,block.sxy,load_work,step_cuts,max_penetration,lock_excess,slide_feed"
+        ",external_work,strain_energy,contact_energy,dissipated_energy,energy_error");
     ASSERT_FALSE(rows.empty());
     const std::vector<double>& last = rows.back();
     EXPECT_DOUBLE_EQ(last[1], 0.5);

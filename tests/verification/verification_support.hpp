@@ -213,6 +213,8 @@ struct Incline {
     long augmentations = 0;
     long coupled_tries = 0; ///< steps tried again with friction coupled in the solve
     std::vector<std::string> warnings;
+    double max_energy_error = 0.0; ///< StepReport::energy_error, largest over the run
+    double dissipated = 0.0;       ///< StepReport::dissipated_energy at the end
   };
 
   [[nodiscard]] Result run(double duration = 1.0) const {
@@ -249,6 +251,8 @@ struct Incline {
       r.steps = static_cast<int>(report.step);
       r.cuts += report.step_cuts;
       r.most_iterations = std::max(r.most_iterations, report.open_close_iterations);
+      r.max_energy_error = std::max(r.max_energy_error, report.energy_error);
+      r.dissipated = report.dissipated_energy;
     }
     r.distance = -(stepper.scene().monitors[0].position - start).dot(along);
     r.augmentations = stepper.counters().augmentations;

@@ -187,6 +187,9 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_EQ(spec.analysis.solver, LinearSolverKind::cholmod);
   EXPECT_DOUBLE_EQ(spec.analysis.pcg_tolerance, 1e-10);
   EXPECT_EQ(spec.analysis.max_step_cuts, 10);
+  EXPECT_DOUBLE_EQ(spec.analysis.energy_tolerance, 0.05);
+  EXPECT_FALSE(spec.analysis.energy_error_limit.has_value());
+  EXPECT_DOUBLE_EQ(spec.analysis.velocity_ratio, 1.0);
   EXPECT_FALSE(spec.analysis.end_time.has_value());
   EXPECT_FALSE(spec.analysis.initial_equilibrium);
 
@@ -337,6 +340,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "solver = \"pcg\"\npcg_tolerance = 1e-8\nmax_step_cuts = 0\nend_time = 2.5\n"
       "max_step_displacement = 0.5\n"
       "initial_equilibrium = true\npenetration_tolerance = 1e-4\n"
+      "energy_tolerance = 0.02\nenergy_error_limit = 0.3\nvelocity_ratio = 0.9\n"
       "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 25\n";
   const CaseSpec spec = parse_case_text(text, "case.toml");
   EXPECT_EQ(spec.title, "Dam on a jointed foundation");
@@ -363,6 +367,9 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_DOUBLE_EQ(spec.analysis.end_time.value(), 2.5);
   EXPECT_DOUBLE_EQ(spec.analysis.max_step_displacement, 0.5);
   EXPECT_TRUE(spec.analysis.initial_equilibrium);
+  EXPECT_DOUBLE_EQ(spec.analysis.energy_tolerance, 0.02);
+  EXPECT_DOUBLE_EQ(spec.analysis.energy_error_limit.value(), 0.3);
+  EXPECT_DOUBLE_EQ(spec.analysis.velocity_ratio, 0.9);
   EXPECT_DOUBLE_EQ(spec.analysis.penetration_tolerance.value(), 1e-4);
   EXPECT_EQ(spec.output.dir, fs::path("/tmp/dam"));
   EXPECT_EQ(spec.output.every, 5);
@@ -597,6 +604,16 @@ std::vector<BadCase> bad_cases() {
        "pcg_tolerance = 0.01 is out of range"},
       {"PcgToleranceZero", minimal + "pcg_tolerance = 0 # <-\n",
        "pcg_tolerance = 0 is out of range"},
+      {"ZeroEnergyTolerance", minimal + "energy_tolerance = 0 # <-\n",
+       "energy_tolerance = 0 is out of range; it must be > 0 and <= 1"},
+      {"EnergyToleranceAboveOne", minimal + "energy_tolerance = 1.5 # <-\n",
+       "energy_tolerance = 1.5 is out of range"},
+      {"EnergyLimitBelowTolerance", minimal + "energy_error_limit = 0.01 # <-\n",
+       "energy_error_limit = 0.01 is out of range; it must be >= energy_tolerance (0.05)"},
+      {"ZeroVelocityRatio", minimal + "velocity_ratio = 0 # <-\n",
+       "velocity_ratio = 0 is out of range; it must be > 0 and <= 1"},
+      {"VelocityRatioAboveOne", minimal + "velocity_ratio = 1.1 # <-\n",
+       "velocity_ratio = 1.1 is out of range"},
       // choices
       {"ChoiceSuggestsCase", minimal + "solver = \"Cholmod\" # <-\n",
        "solver = \"Cholmod\" is not allowed; did you mean \"cholmod\"?"},

@@ -37,9 +37,12 @@ TEST(History, HeaderHasTheContractColumnsThenNineColumnsPerMonitorThenTheWorkOfT
             "step,time,dt,open_close_iterations,contacts,kinetic_energy,"
             "crest.x,crest.y,crest.ux,crest.uy,crest.vx,crest.vy,crest.sxx,crest.syy,crest.sxy,"
             "toe.x,toe.y,toe.ux,toe.uy,toe.vx,toe.vy,toe.sxx,toe.syy,toe.sxy,load_work,step_cuts,"
-            "max_penetration,lock_excess,slide_feed");
-  EXPECT_EQ(history_header({}), "step,time,dt,open_close_iterations,contacts,kinetic_energy,load_"
-                                "work,step_cuts,max_penetration,lock_excess,slide_feed");
+            "max_penetration,lock_excess,slide_feed"
+            ",external_work,strain_energy,contact_energy,dissipated_energy,energy_error");
+  EXPECT_EQ(history_header({}),
+            "step,time,dt,open_close_iterations,contacts,kinetic_energy,load_"
+            "work,step_cuts,max_penetration,lock_excess,slide_feed"
+            ",external_work,strain_energy,contact_energy,dissipated_energy,energy_error");
 }
 
 TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
@@ -58,6 +61,11 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   report.max_penetration = 2.5e-7;
   report.lock_excess = 1.0 + 1.0 / 3.0;
   report.slide_feed = 0.1 + 0.7;
+  report.external_work = 1.0 / 7.0;
+  report.strain_energy = -2.0 / 3.0;
+  report.contact_energy = 0.3;
+  report.dissipated_energy = 1.0e-17;
+  report.energy_error = 0.1 + 0.4;
   MonitorValues m;
   m.x = std::numbers::pi;
   m.sxy = -2.5e9;
@@ -74,12 +82,17 @@ TEST(History, EveryRowIsOnDiskAtOnceAndRealsReadBackBitForBit) {
   std::istringstream cells(row);
   for (std::string cell; std::getline(cells, cell, ',');)
     fields.push_back(cell);
-  ASSERT_EQ(fields.size(), 6u + 9u + 5u);
+  ASSERT_EQ(fields.size(), 6u + 9u + 10u);
   EXPECT_EQ(std::stod(fields[15]), -0.1);
   EXPECT_EQ(fields[16], "3");
   EXPECT_EQ(std::stod(fields[17]), 2.5e-7);
   EXPECT_EQ(std::stod(fields[18]), 1.0 + 1.0 / 3.0);
   EXPECT_EQ(std::stod(fields[19]), 0.1 + 0.7);
+  EXPECT_EQ(std::stod(fields[20]), 1.0 / 7.0);
+  EXPECT_EQ(std::stod(fields[21]), -2.0 / 3.0);
+  EXPECT_EQ(std::stod(fields[22]), 0.3);
+  EXPECT_EQ(std::stod(fields[23]), 1.0e-17);
+  EXPECT_EQ(std::stod(fields[24]), 0.1 + 0.4);
   EXPECT_EQ(fields[0], "7");
   EXPECT_EQ(std::stod(fields[1]), 0.1 + 0.2);
   EXPECT_EQ(std::stod(fields[2]), 1.0 / 3.0);
@@ -101,6 +114,8 @@ TEST(History, RealsOfTheLongestTextReadBackWhole) {
   report.step = 123456789;
   report.time = report.dt = report.kinetic_energy = report.load_work = longest;
   report.max_penetration = report.lock_excess = report.slide_feed = longest;
+  report.external_work = report.strain_energy = report.contact_energy = longest;
+  report.dissipated_energy = report.energy_error = longest;
   report.open_close_iterations = report.contacts = report.step_cuts = 2147483647;
   MonitorValues m;
   m.x = m.y = m.ux = m.uy = m.vx = m.vy = m.sxx = m.syy = m.sxy = longest;
@@ -113,8 +128,8 @@ TEST(History, RealsOfTheLongestTextReadBackWhole) {
   std::istringstream cells(row);
   for (std::string cell; std::getline(cells, cell, ',');)
     fields.push_back(cell);
-  ASSERT_EQ(fields.size(), 6u + 9u + 5u);
-  for (const std::size_t i : {1, 2, 5, 6, 14, 15, 17, 18, 19}) {
+  ASSERT_EQ(fields.size(), 6u + 9u + 10u);
+  for (const std::size_t i : {1, 2, 5, 6, 14, 15, 17, 18, 19, 20, 21, 22, 23, 24}) {
     EXPECT_EQ(fields[i].size(), 24u) << "column " << i;
     EXPECT_EQ(std::stod(fields[i]), longest) << "column " << i;
   }

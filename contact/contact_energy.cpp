@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: MIT
+// contact/contact_energy.cpp — the contacts' terms of the energy balance: the energy in the
+// closed springs and what the springs and friction take in a step (docs/formulation.md,
+// "Energy balance").
+#include "contact/contact_system.hpp"
+
+#include <cmath>
+
+namespace nmm {
+
+namespace {
+
+/// Energy of a point's springs with gap @p gap and shear displacement @p shear in mode
+/// @p mode: p g² / 2 of a closed normal spring, pressed or bonded and pulled (Shi eq.
+/// 3.17-3.18), and p s² / 2 of a locked shear spring (eq. 3.25-3.26).
+double energy_of(ContactMode mode, double stiffness, double gap, double shear) {
+  if (mode == ContactMode::open || !(stiffness > 0.0))
+    return 0.0;
+  double energy = 0.5 * stiffness * gap * gap;
+  if (mode == ContactMode::lock)
+    energy += 0.5 * stiffness * shear * shear;
+  return energy;
+}
+
+} // namespace
+
+ContactSystem::SpringWork ContactSystem::spring_work(const Model& model,
+                                                     const Eigen::VectorXd& raw) const {
+  // Per point: its springs at the start of the step (the mode begin_step() gave it, the
+  // gap g0 and shear offset s0 of the start geometry) and at the end of the last solve (its
+  // mode now, g1 = g0 + hn d, s1 = s0 + hs d). The solve takes the springs' forces at the end
+  // of the step, -p g1 and -p s1, along the whole step's change: the bodies do p g1 (g1 - g0)
+  // + p s1 (s1 - s0) on the springs of the final mode. Of that work and the energy the point
+  // started with, what its springs do not hold at the end is lost: p (g1 - g0)² / 2 for a
+  // spring closed throughout, the whole start energy of one that opened or slipped. A point
+  // whose springs end with more than that (a spring that started stretched while it was
+  // open: an overlap found by the detection) made energy.
+  SpringWork work;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const ContactPoint& p = points_[i];
+    const ContactMode before = start_.points[i].mode;
+    if (before == ContactMode::open && p.mode == ContactMode::open)
+      continue;
+    const Kinematics& k = cached_kinematics(model, p, i);
+    const double g1 = k.gap(raw);
+    const double s1 = k.s0 + k.tangential(raw);
+    const double start = energy_of(before, p.stiffness, k.g0, k.s0);
+    const double end = energy_of(p.mode, p.stiffness, g1, s1);
+    double done = 0.0;
+    if (p.mode != ContactMode::open)
+      done += p.stiffness * g1 * (g1 - k.g0);
+    if (p.mode == ContactMode::lock)
+      done += p.stiffness * s1 * (s1 - k.s0);
+    const double lost = done + start - end;
+    work.start += start;
+    work.end += end;
+    (lost >= 0.0 ? work.lost : work.made) += std::abs(lost);
+  }
+  return work;
+}
+
+double ContactSystem::friction_dissipation(const Model& model, const Eigen::VectorXd& raw) const {
+  double work = 0.0;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const ContactPoint& p = points_[i];
+    if (p.mode != ContactMode::slide || p.shear_force == 0.0)
+      continue;
+    work += std::abs(p.shear_force * cached_kinematics(model, p, i).tangential(raw));
+  }
+  return work;
+}
+
+} // namespace nmm

@@ -1,0 +1,155 @@
+// SPDX-License-Identifier: MIT
+#include "solver/energy_balance.hpp"
+
+#include "contact/contact_system.hpp"
+#include "mesh/error.hpp"
+#include "solver/step_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <sstream>
+
+namespace nmm {
+
+namespace {
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+} // namespace
+
+void EnergyLedger::save_state(StateWriter& out) const {
+  out.put(started);
+  for (const double value : {initial, external_work, strain_energy, dissipated, contact_energy})
+    out.put(value);
+  out.put(last_external);
+  out.put(warned);
+}
+
+void EnergyLedger::load_state(StateReader& in) {
+  started = in.boolean();
+  for (double* value : {&initial, &external_work, &strain_energy, &dissipated, &contact_energy})
+    *value = in.real();
+  last_external = in.vector();
+  warned = in.boolean();
+}
+
+void account_energy(const StepContext& context,
+                    const StepSystemState& state,
+                    const Eigen::VectorXd& external,
+                    const Eigen::VectorXd& raw,
+                    double dt,
+                    double kinetic,
+                    EnergyLedger& ledger,
+                    StepReport& report) {
+  const Model& model = context.model;
+  const StepKind& kind = context.kind;
+  const ContactSystem::SpringWork springs =
+      context.contact ? context.contact->spring_work(model, raw) : ContactSystem::SpringWork{};
+  const double spring_energy = springs.end;
+  if (kind.equilibrium) {
+    ledger.contact_energy = spring_energy;
+    return;
+  }
+  if (!ledger.started) {
+    ledger.initial = ledger.contact_energy;
+    if (kind.dynamic)
+      ledger.initial += kinetic_energy(model, state.element_mass, context.velocity);
+    ledger.started = true;
+  }
+  // Work of the loads: at the end of the step, as Shi's equilibrium (eq. 2.17-2.25) takes
+  // them; a static step without inertia is a quasi-static load increment (trapezoidal rule).
+  if (kind.with_mass || ledger.last_external.size() != external.size()) {
+    ledger.external_work += external.dot(raw);
+    if (!kind.with_mass)
+      ledger.external_work -= 0.5 * external.dot(raw); // loads grow from 0 in the first step
+  } else {
+    ledger.external_work += 0.5 * (ledger.last_external + external).dot(raw);
+  }
+  ledger.last_external = external;
+  // Strain energy of the step: int sigma0 : eps(d) + d K d / 2 per element, the carried
+  // stress's load being -int B^T sigma0 (Shi eq. 2.9-2.10).
+  double quadratic = 0.0;
+  Eigen::VectorXd values;
+  for (int e = 0; e < model.n_elements(); ++e) {
+    model.element_values(e, raw, values);
+    const Eigen::MatrixXd& k = state.element_stiffness[at(e)];
+    const double half = 0.5 * values.dot(k * values);
+    ledger.strain_energy += half - state.element_stress_load[at(e)].dot(values);
+    quadratic += half;
+  }
+  // With the inertia term, the equilibrium at the end of the step (v1 = 2d/dt - v0, Shi eq.
+  // 2.18-2.19) dissipates d K d / 2 of every step; Shi's static step also discards the
+  // kinetic energy of its end velocity 2d/dt.
+  if (kind.with_mass) {
+    ledger.dissipated += quadratic;
+    if (!kind.dynamic)
+      ledger.dissipated += kinetic_energy(model, state.element_mass, (2.0 / dt) * raw);
+  }
+  if (context.contact) {
+    ledger.dissipated += context.contact->friction_dissipation(model, raw);
+    if (kind.with_mass)
+      ledger.dissipated += springs.lost;
+    // Between steps the detection places the springs anew (where the pressed part of a face
+    // is now, anchors carried over, contacts taken over by the next edge): what they hold at
+    // the start of this step less what they held at the end of the last. Less is lost with
+    // the springs left behind; more is made (an overlap found at the start) and stays in
+    // the residual, as does what a spring made within the step (springs.made).
+    const double placed = springs.start - ledger.contact_energy;
+    if (placed < 0.0)
+      ledger.dissipated -= placed;
+  }
+  // Shi's dynamic ratio k01 carries k01 v1 to the next step: (1 - k01²) of the kinetic
+  // energy is taken out.
+  const double ratio = context.options.velocity_ratio;
+  if (kind.dynamic && ratio < 1.0) {
+    ledger.dissipated += (1.0 - ratio * ratio) * kinetic;
+    kinetic *= ratio * ratio;
+    report.kinetic_energy = kinetic;
+  }
+  ledger.contact_energy = spring_energy;
+  report.external_work = ledger.external_work;
+  report.strain_energy = ledger.strain_energy;
+  report.contact_energy = spring_energy;
+  report.dissipated_energy = ledger.dissipated;
+  const double kinetic_now = kind.dynamic ? kinetic : 0.0;
+  const double residual = kinetic_now + ledger.strain_energy + spring_energy + ledger.dissipated -
+                          ledger.initial - ledger.external_work;
+  double largest = 0.0;
+  for (const double term : {kinetic_now, ledger.strain_energy, spring_energy, ledger.dissipated,
+                            ledger.initial, ledger.external_work})
+    largest = std::max(largest, std::abs(term));
+  report.energy_error = largest > 0.0 ? std::abs(residual) / largest : 0.0;
+}
+
+void judge_balance(const StepContext& context,
+                   const StepReport& report,
+                   const Eigen::VectorXd& velocity,
+                   bool& warned) {
+  // Judged in dynamic steps, where the balance is verified; Shi's static steps report it
+  // only (docs/formulation.md, "Energy balance").
+  if (!context.kind.dynamic)
+    return;
+  const StepperOptions& options = context.options;
+  const double error = report.energy_error;
+  const bool stop = options.energy_error_limit && error > *options.energy_error_limit;
+  if (!stop && (warned || !(error > options.energy_tolerance)))
+    return;
+  std::ostringstream text;
+  text << "step " << context.step << ": the energy balance misses by " << error
+       << " of its largest term (kinetic " << report.kinetic_energy << " J, strain "
+       << report.strain_energy << " J, contact " << report.contact_energy << " J, dissipated "
+       << report.dissipated_energy << " J, external work " << report.external_work
+       << " J), more than " << (stop ? "energy_error_limit" : "energy_tolerance") << " ("
+       << (stop ? *options.energy_error_limit : options.energy_tolerance) << ")";
+  text << "; " << fastest_cover_text(context.model, velocity);
+  text << ": energy is made or lost by the contact springs (an overlapping start, contacts "
+          "pushed through), or the time step is too large; try a smaller time_step or "
+          "max_step_displacement, or a smaller penalty";
+  if (stop)
+    throw NumericalError(text.str());
+  context.warnings.push_back(text.str());
+  warned = true;
+}
+
+} // namespace nmm
