@@ -76,9 +76,10 @@ initial_equilibrium = true (the blocks start with their weight on the contacts i
 dropping into unloaded springs during the first steps); with the snapshot build measured
 below it worked at N = 100 but stopped at N = 1000 ("the step matrix is singular ... this
 body can move freely", at a small triangular block on the top and, with other joints, at a
-block on a side). --open-close-max M writes [analysis] open_close_max = M: without it
-(nmm's 6) every step of N = 100 was cut twice (dt 1e-4 s ran as 1.1e-5 s), with 20 none
-was (13 to 18 iterations per step); at N = 1000, 20 was not enough in the first steps. For model nmm the cover size is
+block on a side). --open-close-max M writes [analysis] open_close_max = M: without it nmm
+uses the scene's budget (docs/formulation.md, "Open-close budget"), which ran the first 80
+steps of N = 100, 1000 and 10000 (model dda) uncut on 2026-12-02, where a fixed 6 cut 11,
+12 and 35 of them (docs/benchmarks.md, "Open-close budget"). For model nmm the cover size is
 chosen so that the mean block area holds about 3 math triangles, which the joints cut into
 a handful of elements (9 to 10 elements and covers per block at N = 100, 1000, 10000);
 --cover-size overrides it. DDA and VEM regions do not use the cover size (it is still
@@ -464,7 +465,7 @@ def main(argv=None):
     p.add_argument("--foundation-model", choices=("same", "dda", "vem", "nmm"), default="same",
                    help="model of the foundation (default: the same as --model)")
     p.add_argument("--open-close-max", type=int, metavar="M",
-                   help="[analysis] open_close_max (1 to 100; default: not written, nmm's 6)")
+                   help="[analysis] open_close_max (1 to 100; default: not written, the scene's budget)")
     p.add_argument("--solver", choices=("cholmod", "pcg"), default="cholmod",
                    help="[analysis] solver (default cholmod, not written)")
     p.add_argument("--initial-equilibrium", action="store_true",

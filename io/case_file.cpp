@@ -862,7 +862,8 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
     view.fail_range("penetration_tolerance", *spec.penetration_tolerance,
                     "it must be > 0 (m): the deepest penetration a contact may keep; remove "
                     "the line for the penalty springs alone");
-  spec.open_close_max = view.small_integer_or("open_close_max", 6, 1, 100, "6");
+  if (const auto given = view.integer("open_close_max", 1, 100, "20"))
+    spec.open_close_max = static_cast<int>(*given);
   spec.solver = static_cast<LinearSolverKind>(view.choice("solver", solver_kinds, 0));
   spec.pcg_tolerance = view.number_or("pcg_tolerance", spec.pcg_tolerance, "a fraction", "1.0e-10");
   if (!(spec.pcg_tolerance >= 1e-15 && spec.pcg_tolerance <= 1e-3))

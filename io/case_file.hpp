@@ -173,8 +173,9 @@ struct AnalysisSpec {
   /// Deepest penetration a closed contact may keep (m), > 0: augmented-Lagrange passes
   /// (ContactOptions::penetration_tolerance); empty: the penalty springs alone.
   std::optional<double> penetration_tolerance;
-  /// Most open-close iterations per step, 1..100.
-  int open_close_max = 6;
+  /// Most open-close iterations per step, 1..100; empty: the scene's budget
+  /// (open_close_limit() in solver/open_close.hpp: 6 to 30).
+  std::optional<int> open_close_max;
   LinearSolverKind solver = LinearSolverKind::cholmod;
   /// Residual over right-hand side at which a conjugate-gradient solve stops (solver = "pcg").
   double pcg_tolerance = 1e-10;

@@ -165,7 +165,8 @@ private:
   Eigen::VectorXd reduced_;
   bool assemble_ = true;
   int friction_solves_ = 0;
-  int open_close_ = 0; ///< iterations that changed a contact's mode
+  int open_close_ = 0;   ///< iterations that changed a contact's mode
+  int most_changes_ = 0; ///< the most contacts one counted iteration changed (open_close_limit())
   int augmentations_ = 0;
   OpenCloseResult result_;
 };
@@ -185,7 +186,8 @@ OpenCloseIteration::OpenCloseIteration(const StepContext& context,
   // tenfold limit is known only once a solve has moved less than its 1%); none without
   // contact, which has no open-close iteration.
   if (context_.contact)
-    result_.limit = context_.options.open_close_max * (context_.kind.equilibrium ? 10 : 1);
+    result_.limit =
+        open_close_limit(context_.options.open_close_max, 0, 0, context_.kind.equilibrium);
   // An iterative solver's first guess: Shi's step displacement d = v dt + a dt^2 / 2 with
   // the last step's acceleration (zero in static steps); then each open-close iteration
   // starts from the last one's solution. At 10,004 DDA blocks falling from rest the guess
@@ -364,15 +366,19 @@ bool OpenCloseIteration::is_spent(const ModeUpdate& update) {
   // dynamic step, an iteration that only moves the springs of closed edge-to-edge
   // contacts along their overlaps (the lift-off points converging on where the pressure
   // ends) is none: a shorter step does not make those moves fewer, so they never cut it;
-  // they only count against the cap of ten times open_close_max refactorisations.
+  // they only count against the cap of ten times open_close_max (or open_close_base)
+  // refactorisations.
   // Counted as open-close iterations, they cut the steps of a block sliding on an NMM
   // ramp for 1 s 57 times instead of 28 at 40 E, and 1416 times instead of 284 at
   // 1000 E (examples/03 with dt = 1e-2 s). A static step counts them: its inertia term
   // only steadies it, and where bodies fall onto others a cut step is what keeps them
   // apart (examples/12 at phi = 30 degrees: uncut, its second step ended with 2.2 mm of
   // penetration instead of 0.06 mm; docs/formulation.md, "Static steps").
-  if (assemble_ && (update.changes > update.moves || !kind.dynamic))
+  if (assemble_ && (update.changes > update.moves || !kind.dynamic)) {
     ++open_close_;
+    most_changes_ =
+        std::max(most_changes_, kind.dynamic ? update.changes - update.moves : update.changes);
+  }
   // The initial equilibrium cannot be cut: it has ten times the iterations. So has a step
   // of a static analysis whose last solve moved less than 1% of the step displacement
   // limit: it is short in Shi's sense already (8.5 [1]), and its modes change because
@@ -381,13 +387,22 @@ bool OpenCloseIteration::is_spent(const ModeUpdate& update) {
   const bool settling =
       kind.equilibrium ||
       (!kind.dynamic && context_.model.largest_displacement(raw_) < 0.01 * kind.limit);
-  result_.limit = options.open_close_max * (settling ? 10 : 1);
-  return assemble_
-             ? open_close_ >= result_.limit || result_.factorisations >= 10 * options.open_close_max
-             : ++friction_solves_ >= options.friction_solves_max;
+  const auto bodies = static_cast<int>(context_.model.blocks.size());
+  result_.limit = open_close_limit(options.open_close_max, most_changes_, bodies, settling);
+  const int factorisations_max = 10 * options.open_close_max.value_or(open_close_base);
+  return assemble_ ? open_close_ >= result_.limit || result_.factorisations >= factorisations_max
+                   : ++friction_solves_ >= options.friction_solves_max;
 }
 
 } // namespace
+
+int open_close_limit(const std::optional<int>& given, int most_changes, int bodies, bool settling) {
+  if (settling)
+    return 10 * given.value_or(open_close_base);
+  if (given)
+    return *given;
+  return std::clamp(2 * std::min(most_changes, bodies), open_close_base, open_close_cap);
+}
 
 OpenCloseResult iterate_open_close(const StepContext& context,
                                    const StepTries& tries,

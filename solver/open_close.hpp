@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 
+#include <optional>
+
 namespace nmm {
 
 /// How a try's open-close iteration ended.
@@ -24,10 +26,31 @@ struct OpenCloseResult {
   int limit = 0;
 };
 
+/// Shi's budget of open-close iterations a step (1997, 8.2 and 8.5 [3]: a step small enough
+/// converges in less than six), the scene's budget when open_close_max is not given, before
+/// it grows with the scene.
+inline constexpr int open_close_base = 6;
+/// The most open-close iterations of a try when open_close_max is not given.
+inline constexpr int open_close_cap = 30;
+
+/// The open-close iterations a try may count before it fails (docs/formulation.md,
+/// "Open-close budget"): @p given (open_close_max) when the case gives it; otherwise
+/// open_close_base, raised to twice the lesser of @p most_changes, the most contacts that
+/// changed mode in one iteration of the try so far, and @p bodies, the bodies of the model,
+/// at most open_close_cap. A block system where hundreds of contacts between many bodies
+/// change at once (blocks landing, slabs starting to slide) gets the iterations those
+/// changes take to settle (7 to 24 measured), while a scene of at most three bodies, however
+/// many of its contact points change together, keeps Shi's six (a block's base on an NMM
+/// ramp given more settled on a slide 2% too long). Ten times the given or base budget for a
+/// @p settling step (the initial equilibrium, a static step that barely moves).
+[[nodiscard]] int
+open_close_limit(const std::optional<int>& given, int most_changes, int bodies, bool settling);
+
 /// Iterates the try @p tries of @p system to convergence or to the iteration budget
-/// (StepperOptions::open_close_max, friction_solves_max), with the laps seconds_contact_springs,
-/// seconds_assembly (the right side), seconds_analysis, seconds_factorization, seconds_solve
-/// and seconds_contact_modes. Without contact: one solve, converged.
+/// (open_close_limit(), StepperOptions::friction_solves_max), with the laps
+/// seconds_contact_springs, seconds_assembly (the right side), seconds_analysis,
+/// seconds_factorization, seconds_solve and seconds_contact_modes. Without contact: one solve,
+/// converged.
 /// @p raw: the step displacement of the last solve, or of the converged one the contacts went
 /// back to (ContactSystem::back_to_converged()); left as it was when the try's first coupled
 /// solve does not converge.

@@ -40,8 +40,9 @@ struct StepperOptions {
   /// Open-close iterations with mode changes (each a refactorisation) per step before the
   /// step is cut (Shi 8.2). In a dynamic step, iterations that only move edge-to-edge
   /// springs along their overlaps do not count; no step has more than ten times this many
-  /// refactorisations.
-  int open_close_max = 6;
+  /// refactorisations. Empty: the budget of the scene (open_close_limit(): 6, or twice the
+  /// most contacts one iteration of the try changed, at most twice the bodies and 30).
+  std::optional<int> open_close_max;
   /// Solves with the same factor for friction alone (no mode changed, the friction loads
   /// still moving) per step before the step is cut.
   int friction_solves_max = 50;
@@ -112,8 +113,9 @@ struct StepReport {
   int cuts_energy = 0;       ///< cuts by the energy check (judge_energy())
   int cuts_not_finite = 0;   ///< cuts because a solve's step displacement was not finite
   /// Open-close iterations of the last try that count against the limit (those that changed
-  /// a contact's mode), and that limit: open_close_max, ten times it for a settling step;
-  /// 0 without contact (no open-close iteration).
+  /// a contact's mode), and that limit: open_close_max (or the scene's budget when it is not
+  /// given, open_close_limit()), ten times it for a settling step; 0 without contact (no
+  /// open-close iteration).
   int open_close_counted = 0;
   int open_close_limit = 0;
   int sliding = 0; ///< closed contact points sliding at the end of the step

@@ -140,7 +140,7 @@ TEST(CaseFile, DesignExampleParsesToItsValues) {
   EXPECT_DOUBLE_EQ(spec.analysis.max_step_displacement, 0.01);
   EXPECT_DOUBLE_EQ(spec.analysis.penalty, 40.0);
   EXPECT_FALSE(spec.analysis.penalty_stiffness.has_value());
-  EXPECT_EQ(spec.analysis.open_close_max, 6);
+  EXPECT_EQ(spec.analysis.open_close_max.value_or(0), 6); // given: obeyed as before
 
   ASSERT_EQ(spec.monitors.size(), 1u);
   EXPECT_EQ(spec.monitors[0].name, "crest");
@@ -183,7 +183,7 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_DOUBLE_EQ(spec.analysis.max_step_displacement, 0.01);
   EXPECT_DOUBLE_EQ(spec.analysis.penalty, 40.0);
   EXPECT_FALSE(spec.analysis.penalty_stiffness.has_value());
-  EXPECT_EQ(spec.analysis.open_close_max, 6);
+  EXPECT_FALSE(spec.analysis.open_close_max.has_value()); // the scene's budget
   EXPECT_EQ(spec.analysis.solver, LinearSolverKind::cholmod);
   EXPECT_DOUBLE_EQ(spec.analysis.pcg_tolerance, 1e-10);
   EXPECT_EQ(spec.analysis.max_step_cuts, 10);
@@ -360,7 +360,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_DOUBLE_EQ(spec.contact.cohesion, 1e4);
   EXPECT_DOUBLE_EQ(spec.contact.tensile_strength, 5e3);
   EXPECT_DOUBLE_EQ(spec.analysis.penalty_stiffness.value(), 1e12);
-  EXPECT_EQ(spec.analysis.open_close_max, 20);
+  EXPECT_EQ(spec.analysis.open_close_max.value_or(0), 20);
   EXPECT_EQ(spec.analysis.solver, LinearSolverKind::pcg);
   EXPECT_DOUBLE_EQ(spec.analysis.pcg_tolerance, 1e-8);
   EXPECT_EQ(spec.analysis.max_step_cuts, 0);
