@@ -145,11 +145,10 @@ int resolve_point_group(const CaseSpec& spec,
 }
 
 /// Peak memory (bytes) of an nmm model on a math mesh of @p triangles, covers of @p order.
-/// Measured (2026-11-23, examples/01 with smaller sizes, one static step, peak resident
-/// memory): order 0 115 MB at 18847 triangles and 270 MB at 74493; order 1 239 MB and
-/// 827 MB. Fitted as 60 MB of program and libraries plus k n log2(n) / log2(2e4), since a
-/// nested-dissection factor of a planar mesh fills like n log n: 1% off at 18847 triangles,
-/// 4% (order 1) and 13% (order 0) too high at 74493, on the safe side.
+/// 60 MB of program and libraries plus k n log2(n) / log2(2e4), since a nested-dissection
+/// factor of a planar mesh fills like n log n; k fitted to the peak resident memory of one
+/// static step of examples/01 at 2e4 and 7e4 triangles, orders 0 and 1, so that it errs on
+/// the high side (docs/case-file.md, "Checks across tables and warnings").
 double memory_estimate(double triangles, int order) {
   const double per_triangle = order == 0 ? 2.9e3 : 9.5e3;
   const double n = std::max(triangles, 2.0);

@@ -647,7 +647,7 @@ private:
           LocalCurveData{0U, g});
     }
     // A handful of curves: incremental (zone) insertion beats the aggregated sweep, whose
-    // per-call allocations dominated the cost (measured: bench_cover_mesher speed).
+    // per-call allocations dominate the cost for so few (bench_cover_mesher speed).
     for (const auto& c : curves)
       CGAL::insert(local_, c);
 

@@ -368,12 +368,10 @@ bool OpenCloseIteration::is_spent(const ModeUpdate& update) {
   // ends) is none: a shorter step does not make those moves fewer, so they never cut it;
   // they only count against the cap of ten times open_close_max (or open_close_base)
   // refactorisations.
-  // Counted as open-close iterations, they cut the steps of a block sliding on an NMM
-  // ramp for 1 s 57 times instead of 28 at 40 E, and 1416 times instead of 284 at
-  // 1000 E (examples/03 with dt = 1e-2 s). A static step counts them: its inertia term
-  // only steadies it, and where bodies fall onto others a cut step is what keeps them
-  // apart (examples/12 at phi = 30 degrees: uncut, its second step ended with 2.2 mm of
-  // penetration instead of 0.06 mm; docs/formulation.md, "Static steps").
+  // Counted as open-close iterations, they would cut the steps of a block sliding on a
+  // ramp many times over for nothing. A static step counts them: its inertia term only
+  // steadies it, and where bodies fall onto others a cut step is what keeps them apart
+  // (docs/formulation.md, "Static steps").
   if (assemble_ && (update.changes > update.moves || !kind.dynamic)) {
     ++open_close_;
     most_changes_ =

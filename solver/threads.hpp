@@ -13,9 +13,8 @@ namespace nmm {
 /// slower on this 2-core machine kind (DESIGN.md "Measured facts"). OpenMP parallel regions
 /// then run on one thread: the only ones are in CHOLMOD's supernodal factorisation, which
 /// zeroes and scatters supernodes with num_threads(4) compiled in (CHOLMOD_OMP_NUM_THREADS,
-/// beyond omp_set_num_threads()); beside OpenBLAS's threads they made a factorisation of
-/// 1.55e10 flops 1.43x slower, one of 5.6e9 flops 1.67x (docs/benchmarks.md "Blocks: DDA,
-/// VEM, NMM"). @pre n >= 1.
+/// beyond omp_set_num_threads()), and beside OpenBLAS's threads they oversubscribe the cores
+/// (docs/benchmarks.md, "CHOLMOD threads"). @pre n >= 1.
 void limit_threads(int n);
 
 /// Threads OpenBLAS runs on now.
