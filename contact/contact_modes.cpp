@@ -328,7 +328,8 @@ void ContactSystem::set_forces(const Group& g,
   for (int q = 0; q < g.count; ++q) {
     ContactPoint& p = points_[at(g.first + q)];
     const double share = placed > 0.0 ? p.stiffness / placed : 0.0;
-    p.normal_force = now * share;
+    // An open bond pulls with its tensile strength (contribution()): a tensile normal force.
+    p.normal_force = closed(after) ? now * share : -law_->bond_tension(p);
     p.shear_force = after == ContactMode::lock ? p.stiffness * measure[at(q)].shear
                     : after == ContactMode::slide
                         ? sign * (std::max(0.0, now) * r.friction * share + law_->bond_cohesion(p))

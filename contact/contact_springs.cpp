@@ -42,9 +42,16 @@ bool ContactSystem::contribution(const Model& model,
   if (stiffness != nullptr)
     stiffness->setZero(n, n);
   load.setZero(n);
-  if (p.mode == ContactMode::open)
-    return false;
   const Eigen::VectorXd& hn = k.hn;
+  if (p.mode == ContactMode::open) {
+    // A bonded point opened by a pull beyond its tensile strength yields plastically: it
+    // keeps pulling the two sides together with that strength, t L, as a constant load (the
+    // force of a normal spring stretched to it), until its interface has yielded all along
+    // and breaks (docs/formulation.md, "Joint strength").
+    if (const double tension = law_->bond_tension(p); tension > 0.0)
+      load -= tension * hn;
+    return false;
+  }
   const Eigen::VectorXd& hs = k.hs;
   // Normal spring (Shi eq. 3.17-3.18): energy p/2 g², g = g0 + hn.d.
   if (stiffness != nullptr)

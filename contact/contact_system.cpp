@@ -146,6 +146,12 @@ void ContactSystem::add_contact(const ContactCandidate& c,
                                 KeySet& angle_pairs,
                                 std::vector<double>& g0,
                                 std::vector<std::pair<double, double>>& offsets) {
+  // The corner that ends a face on a joint (ContactCandidate::end_face) while that face is
+  // bonded: the face's pair has springs all along its overlap up to the corner, and
+  // represents that part of the joint; a point spring there would be a second, concentrated
+  // one on the same place, representing no length (docs/formulation.md, "Joint strength").
+  if (c.kind != ContactKind::edge_edge && c.end_face >= 0 && bonded_face(c.end_face, c.end_beyond))
+    return;
   Group g;
   g.key = c.key();
   g.edge = c.kind == ContactKind::edge_edge;
@@ -259,6 +265,11 @@ void ContactSystem::start_contact(Group& g,
     mode = state->mode;
     sign = state->slide_sign;
     normal_force = same ? state->normal : 0.0;
+  } else if (lead.bonded && opened_.count(g.key) != 0) {
+    // A bond that ended the last step open, yielded in tension, starts open (pulling with
+    // its strength): started locked with a new anchor, it opened again and the shear its
+    // springs had taken was lost every step, a creep of 1e-8 m a step.
+    mode = ContactMode::open;
   } else if (lead.bonded || touching) {
     mode = ContactMode::lock;
   }
@@ -344,6 +355,21 @@ void ContactSystem::set_hold_shear(bool hold) {
   }
 }
 
+bool ContactSystem::bonded_face(int face, int other) const {
+  if (edge_bonded_[at(face)] == 0 || edge_bonded_[at(other)] == 0 ||
+      broken_.count(interface_key(face, other)) != 0)
+    return false;
+  for (const auto& [s, m] : {std::pair{face, other}, std::pair{other, face}}) {
+    ContactCandidate pair;
+    pair.kind = ContactKind::edge_edge;
+    pair.slave = s;
+    pair.master = m;
+    if (broken_.count(pair.key()) != 0)
+      return false;
+  }
+  return true;
+}
+
 std::uint64_t ContactSystem::interface_key(int slave, int master) const {
   const auto a = static_cast<std::uint64_t>(at(boundary_.block[at(slave)]));
   const auto b = static_cast<std::uint64_t>(at(boundary_.block[at(master)]));
@@ -351,15 +377,18 @@ std::uint64_t ContactSystem::interface_key(int slave, int master) const {
 }
 
 void ContactSystem::break_yielded_interfaces(const Model& model, const Eigen::VectorXd& raw) {
-  // An interface whose bonded contacts all slide has yielded all along: no elastic part of
-  // it is left to take more load, and Mohr-Coulomb's residual strength (friction) is all it
-  // keeps. Until then its sliding contacts carry their cohesion (plastic yield), so that
-  // the load they shed goes to the parts that still hold and the joint holds up to its
-  // whole strength c L + N tan(phi) whatever its stress concentrations. A contact in slide
-  // mode whose step motion is within the rounding does not move: it holds (friction at or
-  // above what acts on it, the mode it is in keeps it there).
+  // An interface whose bonded contacts all slide or pull open beyond their tensile strength
+  // has yielded all along: no elastic part of it is left to take more load, and
+  // Mohr-Coulomb's residual strength (friction) is all it keeps. Until then its sliding
+  // contacts carry their cohesion and its open ones pull with their tensile strength
+  // (plastic yield), so that the load they shed goes to the parts that still hold and the
+  // joint holds up to its whole strength, c L + N tan(phi) in shear and T L in tension,
+  // whatever its stress concentrations. A contact in slide mode whose step motion is within
+  // the rounding does not move: it holds (friction at or above what acts on it, the mode it
+  // is in keeps it there).
   // Most scenes have no bond at all: nothing to allocate or walk then (a step of 10,004
   // blocks has 60,000 contacts).
+  opened_.clear();
   if (std::none_of(points_.begin(), points_.end(), [](const ContactPoint& p) { return p.bonded; }))
     return;
   KeySet holding(groups_.size());
@@ -374,15 +403,20 @@ void ContactSystem::break_yielded_interfaces(const Model& model, const Eigen::Ve
     const ContactPoint& lead = points_[at(g.first)];
     if (!lead.bonded)
       continue;
+    const std::uint64_t key = interface_key(lead.slave_edge, lead.master);
     if (lead.mode == ContactMode::open) {
-      // Open at the end of the step: this part breaks where its springs would pull beyond
-      // its tensile strength (not where the chatter rule holds it open within it).
-      if (law_->breaks_open(
-              std::span<const ContactPoint>(points_).subspan(at(g.first), at(g.count))))
-        unbond(g, g.key);
+      // Open at the end of the step: this part has yielded in tension where its springs would
+      // pull beyond its tensile strength (not where the chatter rule holds it open within it).
+      // It pulls with that strength (plastic yield; with none, with nothing) and keeps its
+      // bond until its interface has yielded all along, and it starts the next step open.
+      const std::span<const ContactPoint> part =
+          std::span<const ContactPoint>(points_).subspan(at(g.first), at(g.count));
+      if (!law_->yields_open(part))
+        continue;
+      yielded.insert(key);
+      opened_[g.key] = true;
       continue;
     }
-    const std::uint64_t key = interface_key(lead.slave_edge, lead.master);
     bool holds = lead.mode == ContactMode::lock;
     if (lead.mode == ContactMode::slide) {
       double stiffness = 0.0;

@@ -472,9 +472,13 @@ private:
   /// The key under which broken_ marks the interface between the blocks of edges @p slave
   /// and @p master broken (its highest bit set: no contact key has it).
   [[nodiscard]] std::uint64_t interface_key(int slave, int master) const;
+  /// Whether the edge-to-edge contact of edges @p face and @p other is bonded: both faces of
+  /// an intact joint, its bond and that of their interface unbroken.
+  [[nodiscard]] bool bonded_face(int face, int other) const;
   /// Breaks the bonds of every interface (a pair of blocks) whose bonded contacts all slide
-  /// with the step displacement @p raw: it has yielded all along (docs/formulation.md,
-  /// "Joint strength").
+  /// with the step displacement @p raw or pull open beyond their tensile strength: it has
+  /// yielded all along (docs/formulation.md, "Joint strength"). Marks the open ones in
+  /// opened_.
   void break_yielded_interfaces(const Model& model, const Eigen::VectorXd& raw);
   /// Anchor parameter on the master of the projection of slave point @p x.
   [[nodiscard]] double projection(int master, const Point2& x) const;
@@ -624,6 +628,9 @@ private:
   std::vector<std::pair<double, double>> carried_anchors_;
   /// Broken bonds, by contact key (a broken joint never heals).
   std::unordered_map<std::uint64_t, bool> broken_;
+  /// Bonded contacts open at the end of the last step (yielded in tension), by contact key:
+  /// they start the next step open.
+  std::unordered_map<std::uint64_t, bool> opened_;
   /// What an open-close iteration changes: the state begin_step() left, for restart_step(),
   /// and the least penetrating converged one an augmented-Lagrange pass started from, for
   /// augment() and back_to_converged().

@@ -11,6 +11,7 @@
 #include <numeric>
 #include <span>
 #include <string>
+#include <unordered_map>
 
 namespace nmm {
 
@@ -217,15 +218,20 @@ void ContactSystem::save_state(StateWriter& out) const {
       out.put(anchor);
     }
   }
-  keys.clear();
-  for (const auto& [key, broken] : broken_) {
-    if (broken)
-      keys.push_back(key);
-  }
-  std::sort(keys.begin(), keys.end());
-  out.put_count(keys.size());
-  for (const std::uint64_t key : keys)
-    out.put(static_cast<std::int64_t>(key));
+  // The keys marked in a map of broken bonds or open ones, in order.
+  const auto put_marked = [&](const std::unordered_map<std::uint64_t, bool>& marked) {
+    keys.clear();
+    for (const auto& [key, set] : marked) {
+      if (set)
+        keys.push_back(key);
+    }
+    std::sort(keys.begin(), keys.end());
+    out.put_count(keys.size());
+    for (const std::uint64_t key : keys)
+      out.put(static_cast<std::int64_t>(key));
+  };
+  put_marked(broken_);
+  put_marked(opened_);
   out.put(static_cast<std::int64_t>(counters_.points));
   out.put(static_cast<std::int64_t>(counters_.chatter_holds));
   out.put(static_cast<std::int64_t>(counters_.bonds_broken));
@@ -265,10 +271,12 @@ void ContactSystem::load_state(StateReader& in) {
     }
     carry(key, state, anchors);
   }
-  broken_.clear();
-  const std::size_t n_broken = in.count();
-  for (std::size_t k = 0; k < n_broken; ++k)
-    broken_[static_cast<std::uint64_t>(in.integer())] = true;
+  for (std::unordered_map<std::uint64_t, bool>* marked : {&broken_, &opened_}) {
+    marked->clear();
+    const std::size_t n_marked = in.count();
+    for (std::size_t k = 0; k < n_marked; ++k)
+      (*marked)[static_cast<std::uint64_t>(in.integer())] = true;
+  }
   counters_.points = in.integer();
   counters_.chatter_holds = in.integer();
   counters_.bonds_broken = in.integer();

@@ -62,7 +62,7 @@ bool MohrCoulombJoint::has_pure_friction(const ContactPoint& p) const {
   return p.strength.friction_angle > 0.0 && !p.bonded;
 }
 
-bool MohrCoulombJoint::breaks_open(std::span<const ContactPoint> points) const {
+bool MohrCoulombJoint::yields_open(std::span<const ContactPoint> points) const {
   double pull = 0.0;
   double strength = 0.0;
   for (const ContactPoint& p : points) {

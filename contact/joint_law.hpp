@@ -37,7 +37,8 @@ public:
   [[nodiscard]] virtual double friction_coefficient(const ContactPoint& p) const = 0;
   /// The shear a bonded point @p p keeps while it slides at its limit, N; 0 unbonded.
   [[nodiscard]] virtual double bond_cohesion(const ContactPoint& p) const = 0;
-  /// The tension a bonded point @p p holds before it opens, N; 0 unbonded.
+  /// The tension a bonded point @p p holds before it opens, and keeps pulling with while it
+  /// is open (yielded in tension), N; 0 unbonded.
   [[nodiscard]] virtual double bond_tension(const ContactPoint& p) const = 0;
   /// Shear limit of a contact bearing the compressive normal force @p normal (>= 0, N) with
   /// the friction coefficient @p friction and the bonds' cohesion @p cohesion (N), N.
@@ -51,15 +52,16 @@ public:
   /// part (so that it can be coupled to the normal force in the solve).
   [[nodiscard]] virtual bool has_pure_friction(const ContactPoint& p) const = 0;
   /// Whether the bond of an open contact, its points @p points with their gaps after the
-  /// step, breaks: its springs would pull beyond what it holds.
-  [[nodiscard]] virtual bool breaks_open(std::span<const ContactPoint> points) const = 0;
+  /// step, has yielded in tension: its springs would pull beyond what it holds.
+  [[nodiscard]] virtual bool yields_open(std::span<const ContactPoint> points) const = 0;
 };
 
 /// Mohr-Coulomb joints with cohesion and tensile strength: a point
 /// slides when its shear exceeds N tan(phi) + c L, a bonded point holds a tension up to
 /// t L, and a contact's strength is the weaker of its two surfaces' property by property.
-/// An intact joint yields plastically in shear: sliding, it keeps its cohesion c L until
-/// the whole interface has yielded (ContactSystem breaks it then).
+/// An intact joint yields plastically: sliding, a bonded point keeps its cohesion c L, and
+/// opened by a pull beyond t L it keeps pulling with t L, until the whole interface has
+/// yielded (ContactSystem breaks it then).
 class MohrCoulombJoint final : public JointLaw {
 public:
   /// @param strength_of_edge  strength of every boundary edge's surface (its joint set's
@@ -87,7 +89,7 @@ public:
   /// Friction (phi > 0) on an unbonded point.
   [[nodiscard]] bool has_pure_friction(const ContactPoint& p) const override;
   /// The springs' pull, sum of p (gap), beyond the tensile strength, sum of t L.
-  [[nodiscard]] bool breaks_open(std::span<const ContactPoint> points) const override;
+  [[nodiscard]] bool yields_open(std::span<const ContactPoint> points) const override;
 
 private:
   std::vector<std::vector<JointStrength>> strength_of_edge_;

@@ -24,7 +24,8 @@ namespace fs = std::filesystem;
 // conjugate-gradient iterations and fallbacks, the steps they skip (PcgSolver::carried()),
 // and the last step's accelerations (their first guess); version 7 (2026-11-29),
 // coupled_friction_tries and coupled_friction_iterations; version 8 (2026-12-02), the energy
-// balance's terms (EnergyLedger).
+// balance's terms (EnergyLedger) and the bonded contacts open at the end of the step (yielded
+// in tension: they start the next step open).
 constexpr std::string_view magic = "nmm checkpoint, version 8\n";
 constexpr std::int64_t byte_order = 0x0102030405060708;
 

@@ -291,8 +291,8 @@ void OpenCloseIteration::add_contact_springs(Eigen::VectorXd& f) {
   Eigen::VectorXd load;
   for (int i = 0; i < contact.n_points(); ++i) {
     const ContactPoint& point = contact.points()[at(i)];
-    if (point.mode == ContactMode::open)
-      continue; // no spring, no load
+    if (point.mode == ContactMode::open && !point.bonded)
+      continue; // no spring, no load (an open bond pulls with its tensile strength)
     // The upper triangle is what the assembler reads; a transform to the reduced
     // unknowns needs the whole matrix.
     const bool upper = couplings.contact_transform[at(i)] < 0;

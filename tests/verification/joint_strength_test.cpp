@@ -2,22 +2,39 @@
 // tests/verification/joint_strength_test.cpp — a bonded joint against limit equilibrium:
 // a block on a cohesive joint holds at 1.05 c* and slides at 0.95 c*, with
 // c* = W (sin a - tan phi cos a) / L, on several slopes, block sizes, cover sizes and orders
-// of NMM blocks; the contacts along the joint represent its length once (issue 42, item 1).
-// DDA and VEM blocks slide below c*, as they should, but also just above it (the disabled
-// test below). Each block is low enough for its face to press all along (no tension at its
-// upper end in the rigid statics: cos a > 3 sin a H / L), as c* assumes.
+// of NMM, DDA and VEM blocks; the contacts along the joint represent its length once; and a
+// block hanging under a ceiling by a joint's tensile strength T holds at W / L = 0.95 T and
+// falls at 1.05 T (issue 42, item 1). Each block on a slope is low enough for its face to
+// press all along (no tension at its upper end in the rigid statics: cos a > 3 sin a H / L),
+// as c* assumes. All in Shi's static analysis but the last family: a dynamic start, whose
+// sudden load overshoots 2x, holds at twice c* (docs/formulation.md, "Joint strength").
 #include "verification_support.hpp"
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <tuple>
+#include <utility>
 
 namespace nmm {
 namespace {
 
 using testing::elastic;
 using testing::line;
+
+/// Runs @p steps steps of @p stepper; the displacement of its first monitor from @p centre
+/// after them, and in their second half, m.
+std::pair<double, double> motion(TimeStepper& stepper, const Point2& centre, int steps) {
+  Point2 half = centre;
+  for (int k = 0; k < steps; ++k) {
+    stepper.step(1e30);
+    if (k + 1 == steps / 2)
+      half = stepper.scene().monitors[0].position;
+  }
+  const Point2 end = stepper.scene().monitors[0].position;
+  return {(end - centre).norm(), (end - half).norm()};
+}
 
 /// A block L x H on a slope of angle alpha (a band 0.5 m thick, 6 m along the slope, its
 /// base held), its bottom face a bonded joint of friction angle phi and cohesion
@@ -32,6 +49,8 @@ struct CohesiveIncline {
   ElementKind kind = ElementKind::nmm; ///< of the block (the ramp is NMM)
   double phi_degrees = 20.0;
   double ratio = 1.0; ///< cohesion over c*
+  /// Shi's static analysis, or a dynamic one (the load applied at once, velocities kept).
+  TimeIntegration integration = TimeIntegration::static_reset;
 
   struct Result {
     double moved = 0.0;          ///< the block centre's displacement after the steps, m
@@ -70,21 +89,14 @@ struct CohesiveIncline {
     const Point2 centre = a + 0.5 * length * along + 0.5 * height * up;
     scene.monitors.push_back({s.model.find_element(centre, 1e-9), centre});
     StepperOptions options;
-    options.integration = TimeIntegration::static_reset;
+    options.integration = integration;
     const double dt = 1e-3;
     options.time_step = dt;
     TimeStepper stepper(
         s.model, scene, options,
         testing::contact_for(s.model, 40.0 * rock.young, {phi, ratio * c_star, 0.0}, true));
-    Point2 half = centre;
-    for (int k = 0; k < steps; ++k) {
-      stepper.step(1e30);
-      if (k + 1 == steps / 2)
-        half = stepper.scene().monitors[0].position;
-    }
     Result r;
-    r.moved = (stepper.scene().monitors[0].position - centre).norm();
-    r.late = (stepper.scene().monitors[0].position - half).norm();
+    std::tie(r.moved, r.late) = motion(stepper, centre, steps);
     // Static steps of dt from rest: each slides a dt^2 / 2 with friction alone.
     r.friction_slide = 0.5 * g * (std::sin(alpha) - std::tan(phi) * std::cos(alpha)) * dt * dt;
     r.weight = weight;
@@ -127,18 +139,30 @@ CohesiveIncline incline_of(const Geometry& g, double ratio) {
 
 TEST(JointStrength, BlockOnACohesiveJointHoldsJustAboveTheLimitEquilibriumCohesion) {
   // Tolerances: at 1.05 c* the block holds, moving only by the elastic settling of the
-  // block and its springs (measured at most 3.4e-6 m; 1e-5 m is a ninth to a quarter of what
+  // block and its springs (measured at most 3.3e-6 m; 1e-5 m is a ninth to a quarter of what
   // friction alone would let it slide in these 100 steps), and it has settled in the second
-  // half of them (measured 0 to 2.4e-11 m there on order-0 covers, 9.6e-8 m on order 1, whose
-  // block is still settling; 1e-6 m is 1/45 to 1/180 of friction's slide in 50 steps: a bond
-  // that broke on the way would show); the contacts along the joint
-  // represent its length once, never more and, while no part of it has opened by tension at a
-  // corner, all of it to 1e-6 (the detection leaves out a pair whose overlap is under 1e-6 of its
-  // master edge: the sliver a settled corner moves onto the free surface, measured 4.2e-7 m of 1.2
-  // m), and their summed forces are the statics of the block, W cos a and W sin a, to 0.5%.
-  for (const Geometry& g : {Geometry{30.0, 1.2, 0.6, 0.2, 0}, Geometry{30.0, 1.2, 0.6, 0.1, 0},
-                            Geometry{30.0, 3.0, 1.0, 0.3, 0}, Geometry{30.0, 1.2, 0.6, 0.2, 1},
-                            Geometry{25.0, 2.0, 0.5, 0.25, 0}, Geometry{40.0, 1.2, 0.3, 0.2, 0}}) {
+  // half of them (measured 0 to 1.3e-15 m there, 1.9e-11 m on order 1 and 1.5e-7 m on the
+  // order-0 NMM block at 40 degrees, whose upper end has yielded open; 1e-6 m is 1/45 to 1/180
+  // of friction's slide in 50 steps: a bond that broke on the way would show); the contacts
+  // along the joint represent its length once, never more and, while no part of it has
+  // broken, all of it to 1e-6 (the detection leaves out a pair whose overlap is under 1e-6 of
+  // its master edge: the sliver a settled corner moves onto the free surface, measured 1.0e-6
+  // m of 3 m), and their summed forces are the statics of the block, W cos a and W sin a, to
+  // 0.5% (measured 0 to 0.08%: the 40 degree NMM block's creep).
+  // DDA and VEM blocks (one edge for the face, against the ramp's pieces) on the same slopes:
+  // the corner that ends the bonded face has no spring of its own (the face's pair represents
+  // the joint up to it); with one, it took 30% of the normal force on no length, dented the
+  // ramp so that the parts next to it lifted off and broke, and the block slid at 1.05 c*.
+  constexpr ElementKind dda = ElementKind::dda;
+  constexpr ElementKind vem = ElementKind::vem;
+  for (const Geometry& g :
+       {Geometry{30.0, 1.2, 0.6, 0.2, 0}, Geometry{30.0, 1.2, 0.6, 0.1, 0},
+        Geometry{30.0, 3.0, 1.0, 0.3, 0}, Geometry{30.0, 1.2, 0.6, 0.2, 1},
+        Geometry{25.0, 2.0, 0.5, 0.25, 0}, Geometry{40.0, 1.2, 0.3, 0.2, 0},
+        Geometry{30.0, 1.2, 0.6, 0.2, 0, dda}, Geometry{30.0, 1.2, 0.6, 0.2, 0, vem},
+        Geometry{30.0, 3.0, 1.0, 0.3, 0, dda}, Geometry{25.0, 2.0, 0.5, 0.25, 0, dda},
+        Geometry{25.0, 2.0, 0.5, 0.25, 0, vem}, Geometry{40.0, 1.2, 0.3, 0.2, 0, dda},
+        Geometry{40.0, 1.2, 0.3, 0.2, 0, vem}}) {
     const auto& [alpha, length, height, size, order, kind] = g;
     const CohesiveIncline incline = incline_of(g, 1.05);
     const int steps = 100;
@@ -165,20 +189,6 @@ TEST(JointStrength, BlockOnACohesiveJointHoldsJustAboveTheLimitEquilibriumCohesi
   }
 }
 
-// Not yet met (issue 42): a DDA or VEM block slides at 1.05 c*. Its face is one edge, and
-// the angle contact of its lower corner, where the face ends at the joint's end, keeps a
-// point spring (examples/10's pivot needs it) that takes 30% of the normal force: the block
-// turns on it, the upper end of the face lifts by tension, its bond breaks there and the
-// rest cannot hold (measured: 0 -> 15 parts broken by step 12, the block then slides at
-// friction alone). Run with --gtest_also_run_disabled_tests.
-TEST(JointStrength, DISABLED_DdaAndVemBlocksOnACohesiveJointHoldJustAboveTheLimitCohesion) {
-  for (const ElementKind kind : {ElementKind::dda, ElementKind::vem}) {
-    const CohesiveIncline::Result r =
-        incline_of(Geometry{30.0, 1.2, 0.6, 0.2, 0, kind}, 1.05).run(100);
-    EXPECT_LT(r.moved, 1e-5) << "kind " << static_cast<int>(kind);
-  }
-}
-
 TEST(JointStrength, BlockOnACohesiveJointSlidesJustBelowTheLimitEquilibriumCohesion) {
   // At 0.95 c* the whole joint yields, its bond breaks, and the block slides on friction
   // alone: in the second half of the steps each static step slides a dt^2 / 2, to 1% (the
@@ -187,7 +197,9 @@ TEST(JointStrength, BlockOnACohesiveJointSlidesJustBelowTheLimitEquilibriumCohes
        {Geometry{30.0, 1.2, 0.6, 0.2, 0}, Geometry{30.0, 3.0, 1.0, 0.3, 0},
         Geometry{30.0, 1.2, 0.6, 0.2, 1}, Geometry{25.0, 2.0, 0.5, 0.25, 0},
         Geometry{40.0, 1.2, 0.3, 0.2, 0}, Geometry{30.0, 1.2, 0.6, 0.2, 0, ElementKind::dda},
-        Geometry{30.0, 1.2, 0.6, 0.2, 0, ElementKind::vem}}) {
+        Geometry{30.0, 1.2, 0.6, 0.2, 0, ElementKind::vem},
+        Geometry{25.0, 2.0, 0.5, 0.25, 0, ElementKind::dda},
+        Geometry{40.0, 1.2, 0.3, 0.2, 0, ElementKind::vem}}) {
     const auto& [alpha, length, height, size, order, kind] = g;
     const CohesiveIncline incline = incline_of(g, 0.95);
     const int steps = 60;
@@ -201,6 +213,154 @@ TEST(JointStrength, BlockOnACohesiveJointSlidesJustBelowTheLimitEquilibriumCohes
     EXPECT_GT(r.bonds_broken, 0);
     EXPECT_NEAR(r.late, expected, 0.01 * expected)
         << alpha << " deg, " << length << " m, order " << order;
+  }
+}
+
+TEST(JointStrength, DynamicStartHoldsAtTwiceTheStaticLimitCohesion) {
+  // In a dynamic analysis the load comes on at once on unloaded springs, and the block's
+  // undamped response overshoots its static state by 2x: the shear springs reach 2 W sin a
+  // and the normal ones 2 W cos a, so the joint holds only with c >= 2 c*. That is physics
+  // (a load applied suddenly), not the contact model: at 1.05 c* the bond breaks in the first
+  // steps and the block slides (measured, NMM and DDA blocks at 30 degrees: broken at 1.05,
+  // 1.5 and 1.9 c*, held at 2.0, 2.1 and 2.5 c*). So the dynamic family is tested at the
+  // dynamic limit 2 c*: it holds at 1.05 x 2 c* (tolerances as in the static holding test;
+  // measured moved 1.6e-6 to 1.9e-6 m, 1.2e-11 to 1.8e-11 m in the second half) and breaks at
+  // 0.95 x 2 c*, after which it slides at friction alone: over the 0.1 s it moves more than
+  // half of what friction alone lets it slide from rest, g t^2 (sin a - tan phi cos a) / 2
+  // (measured 94% to 95%; the bond holds for the first steps), and never more than that
+  // (0.1% for the elastic settling). A VEM block overshoots less
+  // (its stabilisation): it holds at 1.9 c* too, and breaks at 1.5 c* (measured; also at
+  // 1.05 c*), where it is tested.
+  for (const ElementKind kind : {ElementKind::nmm, ElementKind::dda, ElementKind::vem}) {
+    for (const double ratio : {2.1, kind == ElementKind::vem ? 1.5 : 1.9}) {
+      const Geometry g{30.0, 1.2, 0.6, 0.2, 0, kind};
+      CohesiveIncline incline = incline_of(g, ratio);
+      incline.integration = TimeIntegration::dynamic;
+      const int steps = 100;
+      const CohesiveIncline::Result r = incline.run(steps);
+      const double t = 1e-3 * steps;
+      const double a = g.alpha * std::numbers::pi / 180.0;
+      const double free_slide =
+          0.5 * 9.81 * (std::sin(a) - std::tan(20.0 * std::numbers::pi / 180.0) * std::cos(a)) * t *
+          t;
+      std::printf("dynamic, %.2f c*, kind %d: moved %.3e m (%.1e in the second half; friction "
+                  "alone from rest %.3e), %ld parts broken\n",
+                  ratio, static_cast<int>(kind), r.moved, r.late, free_slide, r.bonds_broken);
+      if (ratio > 2.0) {
+        EXPECT_LT(r.moved, 1e-5) << "kind " << static_cast<int>(kind);
+        EXPECT_LT(r.late, 1e-6) << "kind " << static_cast<int>(kind);
+        EXPECT_EQ(r.bonds_broken, 0);
+      } else {
+        EXPECT_GT(r.bonds_broken, 0);
+        EXPECT_GT(r.moved, 0.5 * free_slide) << "kind " << static_cast<int>(kind);
+        EXPECT_LT(r.moved, free_slide * 1.001) << "kind " << static_cast<int>(kind);
+      }
+    }
+  }
+}
+
+/// A block L x H hanging under a fixed ceiling (1 m wider on either side, 0.5 m thick, held
+/// along its top) by a bonded joint of tensile strength T = W / (ratio L) (cohesion as much,
+/// friction angle 20 degrees), in Shi's static analysis from unloaded springs.
+struct HangingBlock {
+  Geometry g;         ///< block size, cover size, order and kind (the slope unused)
+  double ratio = 1.0; ///< W / L over T
+
+  struct Result {
+    double moved = 0.0;  ///< the block centre's displacement after the steps, m
+    double late = 0.0;   ///< its displacement in the second half of the steps, m
+    double fall = 0.0;   ///< what a free fall moves in one static step (from rest), m
+    double normal = 0.0; ///< summed normal force of the contacts (compressive positive), N
+    double weight = 0.0; ///< W, N
+    double joint_length = 0.0;
+    long bonds_broken = 0;
+  };
+
+  [[nodiscard]] Result run(int steps) const {
+    const double length = g.length;
+    const double height = g.height;
+    MaterialRegion ceiling{"ceiling",
+                           {{{{-1.0, 0.0},
+                              {0.0, 0.0},
+                              {length, 0.0},
+                              {length + 1.0, 0.0},
+                              {length + 1.0, 0.5},
+                              {-1.0, 0.5}},
+                             {}}}};
+    MaterialRegion block{"block",
+                         {{{{0.0, -height}, {length, -height}, {length, 0.0}, {0.0, 0.0}}, {}}}};
+    const double rho = 2500.0;
+    const double gravity = 9.81;
+    const double weight = rho * gravity * length * height;
+    const double tensile = weight / (ratio * length);
+    const ElasticMaterial rock = elastic(1e10, 0.25, rho, PlaneCondition::strain);
+    testing::Setup s = testing::make_setup(
+        {ceiling, block},
+        {line("glue", {0.0, 0.0}, {length, 0.0}), line("top", {-1.0, 0.5}, {length + 1.0, 0.5})},
+        {0}, nullptr, g.size, rock, g.order, {ElementKind::nmm, g.kind});
+    Scene scene;
+    scene.supports = curve_support_points(s.model, 1, true, true, SupportMethod::exact, "top");
+    scene.body_loads.push_back({{0.0, -gravity}, {}});
+    const Point2 centre(0.5 * length, -0.5 * height);
+    scene.monitors.push_back({s.model.find_element(centre, 1e-9), centre});
+    StepperOptions options;
+    options.integration = TimeIntegration::static_reset;
+    const double dt = 1e-3;
+    options.time_step = dt;
+    const double phi = 20.0 * std::numbers::pi / 180.0;
+    TimeStepper stepper(
+        s.model, scene, options,
+        testing::contact_for(s.model, 40.0 * rock.young, {phi, tensile, tensile}, true));
+    Result r;
+    std::tie(r.moved, r.late) = motion(stepper, centre, steps);
+    r.fall = 0.5 * gravity * dt * dt;
+    r.weight = weight;
+    const ContactSystem& contact = *stepper.contact();
+    for (const ContactPoint& p : contact.points()) {
+      r.joint_length += p.length;
+      r.normal += p.normal_force; // an open bond pulls with its tensile strength
+    }
+    r.bonds_broken = contact.counters().bonds_broken;
+    return r;
+  }
+};
+
+TEST(JointStrength, BlockHangingByTensileStrengthHoldsJustBelowItAndFallsJustAbove) {
+  // Tolerances: at W / L = 0.95 T the block holds, moving only by the elastic settling of the
+  // block, the ceiling and the springs (measured at most 1.7e-6 m; 1e-5 m is 1/30 of a free
+  // fall in these 60 static steps) and settled in the second half (measured 0 to 5e-15 m; 1e-6
+  // m is 1/150 of the free fall there), no bond broken, the contacts represent the joint's
+  // length once (to 1e-6, as on the slope), and their summed normal force is -W to 0.5% (the
+  // ends of the face, where the elastic bodies concentrate the pull beyond T, pull with T:
+  // plastic yield). At 1.05 T every part has yielded in the first step, the bond breaks, and
+  // the block falls: each static step of the second half moves it g dt^2 / 2, to 1%.
+  for (const Geometry& g : {Geometry{0.0, 1.2, 0.6, 0.2, 0}, Geometry{0.0, 2.0, 0.5, 0.25, 0},
+                            Geometry{0.0, 1.2, 0.6, 0.1, 0}, Geometry{0.0, 1.2, 0.6, 0.2, 1},
+                            Geometry{0.0, 1.2, 0.6, 0.2, 0, ElementKind::dda},
+                            Geometry{0.0, 2.0, 0.5, 0.25, 0, ElementKind::dda},
+                            Geometry{0.0, 1.2, 0.6, 0.2, 0, ElementKind::vem},
+                            Geometry{0.0, 3.0, 1.0, 0.3, 0, ElementKind::vem}}) {
+    for (const double ratio : {0.95, 1.05}) {
+      const int steps = 60;
+      const HangingBlock::Result r = HangingBlock{g, ratio}.run(steps);
+      const double fall = (steps - steps / 2) * r.fall;
+      std::printf("W/L = %.2f T, %g x %g m, cover %g, order %d, kind %d: moved %.3e m, in the "
+                  "second half %.5e m (free fall %.5e), N %.1f (W %.1f), length %.9f m, %ld "
+                  "parts broken\n",
+                  ratio, g.length, g.height, g.size, g.order, static_cast<int>(g.kind), r.moved,
+                  r.late, fall, r.normal, r.weight, r.joint_length, r.bonds_broken);
+      if (ratio < 1.0) {
+        EXPECT_LT(r.moved, 1e-5) << g.length << " m, kind " << static_cast<int>(g.kind);
+        EXPECT_LT(r.late, 1e-6) << g.length << " m, kind " << static_cast<int>(g.kind);
+        EXPECT_EQ(r.bonds_broken, 0);
+        EXPECT_NEAR(r.joint_length, g.length, 1e-6 * g.length);
+        EXPECT_NEAR(r.normal, -r.weight, 5e-3 * r.weight);
+      } else {
+        EXPECT_GT(r.bonds_broken, 0);
+        EXPECT_NEAR(r.late, fall, 0.01 * fall)
+            << g.length << " m, kind " << static_cast<int>(g.kind);
+      }
+    }
   }
 }
 
