@@ -39,14 +39,17 @@ ContactSystem::SpringWork ContactSystem::spring_work(const Model& model,
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const ContactPoint& p = points_[i];
     const ContactMode before = start_.points[i].mode;
-    if (before == ContactMode::open && p.mode == ContactMode::open)
+    // A bonded point open at the end, yielded in tension, pulled with its strength t L as a
+    // constant load along the step's opening: plastic work, lost.
+    const double tension = p.mode == ContactMode::open ? law_->bond_tension(p) : 0.0;
+    if (before == ContactMode::open && p.mode == ContactMode::open && !(tension > 0.0))
       continue;
     const Kinematics& k = cached_kinematics(model, p, i);
     const double g1 = k.gap(raw);
     const double s1 = k.s0 + k.tangential(raw);
     const double start = energy_of(before, p.stiffness, k.g0, k.s0);
     const double end = energy_of(p.mode, p.stiffness, g1, s1);
-    double done = 0.0;
+    double done = tension > 0.0 ? tension * (g1 - k.g0) : 0.0;
     if (p.mode != ContactMode::open)
       done += p.stiffness * g1 * (g1 - k.g0);
     if (p.mode == ContactMode::lock)

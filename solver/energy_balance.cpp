@@ -20,6 +20,7 @@ std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
 void EnergyLedger::save_state(StateWriter& out) const {
   out.put(started);
+  out.put(after_equilibrium);
   for (const double value : {initial, external_work, strain_energy, dissipated, contact_energy})
     out.put(value);
   out.put(last_external);
@@ -28,6 +29,7 @@ void EnergyLedger::save_state(StateWriter& out) const {
 
 void EnergyLedger::load_state(StateReader& in) {
   started = in.boolean();
+  after_equilibrium = in.boolean();
   for (double* value : {&initial, &external_work, &strain_energy, &dissipated, &contact_energy})
     *value = in.real();
   last_external = in.vector();
@@ -49,9 +51,15 @@ void account_energy(const StepContext& context,
   const double spring_energy = springs.end;
   if (kind.equilibrium) {
     ledger.contact_energy = spring_energy;
+    ledger.after_equilibrium = true;
     return;
   }
   if (!ledger.started) {
+    // The springs' energy the run starts with: what the initial equilibrium left in them, or,
+    // without one, what the first step's detection placed (springs carrying an initial
+    // stress's traction across a joint, touching contacts).
+    if (!ledger.after_equilibrium)
+      ledger.contact_energy = springs.start;
     ledger.initial = ledger.contact_energy;
     if (kind.dynamic)
       ledger.initial += kinetic_energy(model, state.element_mass, context.velocity);

@@ -17,12 +17,13 @@ class ContactSystem;
 
 /// The terms of the balance kept through the run, J (per metre in plane strain).
 struct EnergyLedger {
-  bool started = false;        ///< the first time step was accounted
-  double initial = 0.0;        ///< kinetic + contact energy at the start of the first step
-  double external_work = 0.0;  ///< StepReport::external_work
-  double strain_energy = 0.0;  ///< StepReport::strain_energy
-  double dissipated = 0.0;     ///< StepReport::dissipated_energy
-  double contact_energy = 0.0; ///< at the end of the last step (or equilibrium)
+  bool started = false;           ///< the first time step was accounted
+  bool after_equilibrium = false; ///< an initial equilibrium came before the first step
+  double initial = 0.0;           ///< kinetic + contact energy at the start of the first step
+  double external_work = 0.0;     ///< StepReport::external_work
+  double strain_energy = 0.0;     ///< StepReport::strain_energy
+  double dissipated = 0.0;        ///< StepReport::dissipated_energy
+  double contact_energy = 0.0;    ///< at the end of the last step (or equilibrium)
   /// External loads of the last step (a static step without inertia applies its loads
   /// quasi-statically: the trapezoidal rule between the last step's loads and its own).
   Eigen::VectorXd last_external;
