@@ -324,6 +324,10 @@ private:
     /// its ends search (LiftOffEnd), for ContactOptions::lift_off_searches moves at most.
     bool searching = false;
     int searches = 0;
+    /// The shear springs' pre-shear of an in-situ contact (in_situ_traction()), m: its
+    /// points' anchors sit this far behind their slave points along the master when the
+    /// contact locks new.
+    double in_situ_shear = 0.0;
     /// Ends the search (its brackets hold for this overlap and these springs only).
     void stop_search() noexcept {
       searching = false;
@@ -466,6 +470,13 @@ private:
   // begin_step(), in parts.
   /// The boundary at the start of the step, and each edge's element, strength and bond.
   void set_up_boundary(const Model& model);
+  /// The traction of the initial stress across the contact of slave edge @p slave (and, for
+  /// an angle, the vertex's other edge @p slave_other) on @p master: (normal, compressive
+  /// positive; shear, the stretch of the shear springs along the master's direction times
+  /// their stiffness per unit length: t.sigma0 n), Pa. Zero unless every slave edge and the master
+  /// are faces of one joint curve: the joints the initial stress acts across (docs/formulation.md,
+  /// "In-situ stress").
+  [[nodiscard]] Point2 in_situ_traction(int slave, int slave_other, int master) const;
   /// Puts the spring of angle-to-angle candidate @p c on the entrance line with the smaller
   /// passing distance (Shi 3.2 [1]): @p p's slave and master.
   void choose_entrance_line(const ContactCandidate& c, ContactPoint& p) const;
@@ -583,6 +594,10 @@ private:
   std::vector<int> edge_element_;
   std::vector<JointStrength> edge_strength_;
   std::vector<char> edge_bonded_;
+  /// Per boundary edge: the joint curve it is a face of (BoundaryEdge::joint) and the initial
+  /// stress of its material (sxx, syy, sxy).
+  std::vector<int> edge_joint_;
+  std::vector<Eigen::Vector3d> edge_stress_;
   /// Shapes of the elements the contact points' edges belong to, built once per step (the
   /// geometry stays put through a step; a VEM block's shape computes its projector), and
   /// each element's index into them (-1: none).
