@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <span>
+#include <sstream>
 
 namespace nmm {
 
@@ -403,6 +404,91 @@ void ContactSystem::set_hold_shear(bool hold) {
       p.anchor = projection(p.master, p.slave);
     }
   }
+  if (tie_)
+    tie_touching();
+}
+
+void ContactSystem::tie_touching() {
+  // A tensile strength beyond any force, finite so that a length of zero gives zero.
+  constexpr double unlimited = 1e300;
+  tie_capacity_.assign(points_.size(), -1.0); // (-1: not tied)
+  std::vector<std::pair<double, double>> offsets;
+  for (Group& g : groups_) {
+    ContactPoint& lead = points_[at(g.first)];
+    if (lead.mode == ContactMode::open || lead.length <= 0.0)
+      continue;
+    if (g.edge && (g.from != g.lo || g.to != g.hi)) {
+      // Springs along the whole overlap, as on an intact joint, keeping the anchors' shear
+      // offsets (an in-situ pre-shear among them).
+      offsets.clear();
+      for (int q = 0; q < g.count; ++q) {
+        const ContactPoint& p = points_[at(g.first + q)];
+        offsets.emplace_back(p.u, p.anchor - projection(p.master, p.slave));
+      }
+      place(g, g.lo, g.hi, &offsets);
+    }
+    for (int q = 0; q < g.count; ++q) {
+      ContactPoint& p = points_[at(g.first + q)];
+      tie_capacity_[at(g.first + q)] = law_->bond_tension(p);
+      p.bonded = true;
+      p.strength.tensile_strength = unlimited;
+    }
+  }
+}
+
+std::string ContactSystem::untenable_tension(const Model& model) const {
+  if (tie_capacity_.size() != points_.size())
+    return {};
+  // Net normal force and bond strength of the tied contacts between each pair of blocks.
+  struct Pair {
+    int a = -1;
+    int b = -1;
+    double normal = 0.0;
+    double capacity = 0.0;
+    double length = 0.0;
+    Point2 where = Point2::Zero();
+  };
+  std::vector<Pair> pairs;
+  const auto block_of = [&](int edge) { return model.elements[at(edge_element_[at(edge)])].block; };
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const ContactPoint& p = points_[i];
+    if (tie_capacity_[i] < 0.0 || p.mode == ContactMode::open)
+      continue;
+    const int a = std::min(block_of(p.slave_edge), block_of(p.master));
+    const int b = std::max(block_of(p.slave_edge), block_of(p.master));
+    auto it = std::find_if(pairs.begin(), pairs.end(),
+                           [&](const Pair& q) { return q.a == a && q.b == b; });
+    if (it == pairs.end()) {
+      pairs.push_back({a, b, 0.0, 0.0, 0.0, p.slave});
+      it = pairs.end() - 1;
+    }
+    it->normal += p.normal_force;
+    it->capacity += tie_capacity_[i];
+    it->length += p.length;
+  }
+  const auto name = [&](int block) {
+    for (const ModelElement& e : model.elements) {
+      if (e.block == block)
+        return "block " + std::to_string(block) + " (material \"" +
+               model.materials[at(e.material)].name + "\")";
+    }
+    return "block " + std::to_string(block);
+  };
+  for (const Pair& q : pairs) {
+    // Beyond the bonds by more than the rounding of the forces.
+    if (-q.normal <= q.capacity * (1.0 + 1e-9) + 1e-12 * std::abs(q.normal))
+      continue;
+    std::ostringstream out;
+    out.precision(4);
+    out << name(q.b) << " and " << name(q.a) << " near " << point_text(q.where, 6)
+        << " are held together by nothing but tension: their contacts would have to pull with "
+        << -q.normal << " N, and their bond's tensile strength holds " << q.capacity
+        << " N (tensile_strength times the " << q.length
+        << " m in contact); a tensile_strength of at least " << -q.normal / q.length
+        << " Pa on that joint, a support, or no initial_equilibrium lets it start";
+    return out.str();
+  }
+  return {};
 }
 
 std::uint64_t ContactSystem::interface_key(int slave, int master) const {

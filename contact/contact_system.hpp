@@ -194,6 +194,17 @@ public:
   /// While set, closed contacts lock and never slide (the initial equilibrium: the shear
   /// springs take what friction could not); for the step begun last.
   void set_hold_shear(bool hold);
+  /// While set, set_hold_shear(true) also ties every touching contact (of some length):
+  /// bonded, with no limit to its tension, its springs along the whole overlap. The initial
+  /// equilibrium of a body that only tension or a tipping motion resolves (a block hanging
+  /// under a ceiling, a tall block that must topple) is then a solve of an elastic system
+  /// instead of a mechanism (TimeStepper::equilibrate()).
+  void set_tie(bool tie) noexcept { tie_ = tie; }
+  /// After a solve with the contacts tied: a description of the first pair of blocks whose
+  /// tied contacts pull on each other with more, net, than their bonds' tensile strength
+  /// holds (tensile_strength times the length in contact; nothing without a bond), or
+  /// empty. Such a pair is held together by nothing but that tension.
+  [[nodiscard]] std::string untenable_tension(const Model& model) const;
 
   /// What the chatter rule holds at the limit of friction in the contacts as they are: those
   /// of the last update_modes(), or of the converged solve that augment() or
@@ -506,6 +517,9 @@ private:
                      std::vector<std::pair<double, double>>& offsets);
   /// The shapes of the elements of every contact point's edges.
   void set_up_shapes(const Model& model);
+  /// Ties the touching contacts (set_tie()), keeping each point's own bond strength in
+  /// tie_capacity_.
+  void tie_touching();
 
   // update_modes(), in parts.
   /// Gap, shear and step motion of one point after a solve.
@@ -644,6 +658,10 @@ private:
   double converged_penetration_ = 0.0; ///< max_penetration() of converged_, m
   int last_changed_ = 0;
   bool hold_shear_ = false;
+  bool tie_ = false;
+  /// Per point, after a tie: the tension its own bond holds (JointLaw::bond_tension()), N;
+  /// -1 for a point not tied.
+  std::vector<double> tie_capacity_;
   double held_open_penetration_ = 0.0; ///< deepest a contact held open may penetrate, m
   /// update_modes(): (shear - limit, shear / limit) of each lock held beyond its friction
   /// limit (kept for its storage)
