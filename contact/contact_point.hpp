@@ -53,13 +53,17 @@ struct ContactPoint {
   /// the gap once the contact opens, and is 0 for everything that meets in the ordinary
   /// way. The springs push with p (offset + shift - gap).
   double offset = 0.0;
-  /// Augmented-Lagrange multiplier over the spring stiffness, m (ContactOptions::
-  /// penetration_tolerance): the springs' zero moved by the penetrations of the step's
+  /// The springs' zero moved into the bodies, m: at the start of every step the
+  /// pre-compression of a contact across a joint under initial stress (the in-situ normal
+  /// traction times the point's length over its stiffness, so that the springs carry that
+  /// traction at zero gap: docs/formulation.md, "In-situ stress"), 0 for any other contact;
+  /// then the augmented-Lagrange multiplier over the spring stiffness (ContactOptions::
+  /// penetration_tolerance) added: the springs' zero moved by the penetrations of the step's
   /// earlier solves, so that they push with the force the multiplier carries plus p times
   /// the penetration left; it decides opening and closing as the springs' force does (an open
-  /// contact's falls back by its gap at the next pass). 0 at the start of every step
-  /// (multipliers carried to the next step, as Lin et al. do, pushed landing blocks off again:
-  /// docs/formulation.md, "Augmented Lagrange").
+  /// contact's falls back by its gap at the next pass). Multipliers are not carried to the
+  /// next step (as Lin et al. do, that pushed landing blocks off again: docs/formulation.md,
+  /// "Augmented Lagrange").
   double shift = 0.0;
 };
 

@@ -9,8 +9,10 @@
 #include "mesh/error.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <span>
+#include <sstream>
 
 namespace nmm {
 
@@ -111,14 +113,47 @@ void ContactSystem::set_up_boundary(const Model& model) {
   edge_element_.clear();
   edge_strength_.clear();
   edge_bonded_.clear();
+  edge_joint_.clear();
+  edge_stress_.clear();
   for (std::size_t l = 0; l < model.loops.size(); ++l) {
     const BoundaryLoop& loop = model.loops[l];
     for (int k = 0; k < loop.n_vertices(); ++k) {
-      edge_element_.push_back(loop.edges[at(k)].element);
+      const BoundaryEdge& edge = loop.edges[at(k)];
+      edge_element_.push_back(edge.element);
       edge_strength_.push_back(law_->surface(l, at(k)));
       edge_bonded_.push_back(law_->is_bonded(l, at(k)) ? 1 : 0);
+      edge_joint_.push_back(edge.joint);
+      edge_stress_.push_back(
+          edge.element >= 0
+              ? model.materials[at(model.elements[at(edge.element)].material)].initial_stress
+              : Eigen::Vector3d::Zero());
     }
   }
+}
+
+Point2 ContactSystem::in_situ_traction(int slave, int slave_other, int master) const {
+  // The initial stress sigma0 is in equilibrium inside each body; across a joint the two
+  // faces press on each other with its traction sigma0 n. Each body's initial-stress load
+  // -integral B^T sigma0 (Shi 1997, eq. 2.10) is, by the divergence theorem, that traction on
+  // its boundary pushing outwards; the joint's springs carry it from the start, or the
+  // bodies expand into each other until their penetration does (docs/formulation.md,
+  // "In-situ stress"). The two sides' stresses, averaged (the same where one rock is cut).
+  const int joint = edge_joint_[at(master)];
+  if (joint < 0 || edge_joint_[at(slave)] != joint || edge_joint_[at(slave_other)] != joint)
+    return Point2::Zero();
+  const Eigen::Vector3d s = 0.5 * (edge_stress_[at(slave)] + edge_stress_[at(master)]);
+  if (s.isZero())
+    return Point2::Zero();
+  const Point2& a = boundary_.position[at(master)];
+  const Point2 tangent = (boundary_.position[at(boundary_.next[at(master)])] - a).normalized();
+  const Point2 normal = perp(tangent); // out of the master, towards the slave
+  const Point2 traction(s(0) * normal.x() + s(2) * normal.y(),
+                        s(2) * normal.x() + s(1) * normal.y()); // sigma0 n
+  // On the slave (outward normal -n) the master presses with -sigma0 n: its normal part is
+  // -n.sigma0 n (compressive positive); its shear -t.sigma0 n is what the shear spring
+  // pushes the slave with, -p s0 along t (ContactSystem::contribution()): a stretch s0 of
+  // t.sigma0 n over the spring's stiffness per unit length.
+  return {-normal.dot(traction), tangent.dot(traction)};
 }
 
 void ContactSystem::choose_entrance_line(const ContactCandidate& c, ContactPoint& p) const {
@@ -198,6 +233,11 @@ void ContactSystem::add_angle_point(const ContactCandidate& c,
   p.bonded = c.end_face >= 0
                  ? edge_bonded_[at(c.end_face)] != 0 && edge_bonded_[at(c.end_beyond)] != 0
                  : edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
+  // Across a joint under initial stress, the springs pre-compressed and pre-sheared to carry
+  // the in-situ traction on the point's length (none for a corner of no length).
+  const Point2 traction = in_situ_traction(v, boundary_.previous[at(v)], p.master);
+  p.shift = traction.x() * p.length / p.stiffness;
+  g.in_situ_shear = traction.y() * p.length / p.stiffness;
   g.count = 1;
   points_.push_back(p);
   g0.push_back((p.slave - ma).dot(normal));
@@ -227,6 +267,12 @@ bool ContactSystem::add_edge_points(const ContactCandidate& c,
   g.hi = std::clamp(std::max(u1, u2), 0.0, 1.0);
   p.strength = law_->contact_strength(edge_strength_[at(c.slave)], edge_strength_[at(c.master)]);
   p.bonded = edge_bonded_[at(c.slave)] != 0 && edge_bonded_[at(c.master)] != 0;
+  // The pre-compression and pre-shear of the in-situ traction (as for an angle point): the
+  // springs' stiffness per unit length is penalty / spring_length, the same at every point.
+  const Point2 traction = in_situ_traction(c.slave, c.slave, c.master);
+  const double compliance = options_.spring_length / options_.penalty;
+  p.shift = traction.x() * compliance;
+  g.in_situ_shear = traction.y() * compliance;
   g.count = gauss_;
   for (int q = 0; q < gauss_; ++q) {
     points_.push_back(p);
@@ -257,7 +303,9 @@ void ContactSystem::start_contact(Group& g,
   // step at 40 E, and 96 step cuts in 200 steps at 100 E (2 now).
   bool same = false;
   const Carried* state = carried_state(carried, g.key, p.slave_edge, p.master, g.edge, &same);
-  const bool touching = *std::min_element(g0.begin(), g0.end()) <= rounding_;
+  // Gaps as the springs see them: less an in-situ pre-compression (ContactPoint::shift).
+  const double pre = lead.shift;
+  const bool touching = *std::min_element(g0.begin(), g0.end()) - pre <= rounding_;
   ContactMode mode = ContactMode::open;
   int sign = 0;
   double normal_force = 0.0;
@@ -297,20 +345,34 @@ void ContactSystem::start_contact(Group& g,
       offsets.emplace_back(u, anchor - projection(p.master, slave));
     }
   }
+  // A new contact across a joint under initial stress anchors its shear springs the
+  // in-situ pre-shear behind its slave points (Group::in_situ_shear), a carried one keeps
+  // its anchors.
+  const double pre_shear =
+      same ? 0.0
+           : g.in_situ_shear / (boundary_.position[at(boundary_.next[at(p.master)])] -
+                                boundary_.position[at(p.master)])
+                                   .norm();
   auto anchor_of = [&](double u, const Point2& slave) {
-    return projection(p.master, slave) + (same ? offset_at(offsets, u) : 0.0);
+    return projection(p.master, slave) + (same ? offset_at(offsets, u) : -pre_shear);
   };
   if (g.edge) {
     // Springs where the edges press on each other; all along an intact joint.
     double from = g.lo;
     double to = g.hi;
     if (closed(mode) && !lead.bonded) {
-      if (const OverlapPart part = GapProfile(g.lo, g.hi, g0).negative(); part.found) {
+      NMM_ASSERT(g0.size() == 2, "an edge pair's gaps at the ends of its overlap");
+      const std::array<double, 2> pressed{g0[0] - pre, g0[1] - pre};
+      if (const OverlapPart part = GapProfile(g.lo, g.hi, pressed).negative(); part.found) {
         from = part.from;
         to = part.to;
       }
     }
     place(g, from, to, same ? &offsets : nullptr);
+    if (!same) {
+      for (int q = 0; q < g.count; ++q)
+        points_[at(g.first + q)].anchor -= pre_shear;
+    }
   } else {
     lead.anchor = anchor_of(0.0, lead.slave);
   }
@@ -353,6 +415,91 @@ void ContactSystem::set_hold_shear(bool hold) {
       p.anchor = projection(p.master, p.slave);
     }
   }
+  if (tie_)
+    tie_touching();
+}
+
+void ContactSystem::tie_touching() {
+  // A tensile strength beyond any force, finite so that a length of zero gives zero.
+  constexpr double unlimited = 1e300;
+  tie_capacity_.assign(points_.size(), -1.0); // (-1: not tied)
+  std::vector<std::pair<double, double>> offsets;
+  for (Group& g : groups_) {
+    ContactPoint& lead = points_[at(g.first)];
+    if (lead.mode == ContactMode::open || lead.length <= 0.0)
+      continue;
+    if (g.edge && (g.from != g.lo || g.to != g.hi)) {
+      // Springs along the whole overlap, as on an intact joint, keeping the anchors' shear
+      // offsets (an in-situ pre-shear among them).
+      offsets.clear();
+      for (int q = 0; q < g.count; ++q) {
+        const ContactPoint& p = points_[at(g.first + q)];
+        offsets.emplace_back(p.u, p.anchor - projection(p.master, p.slave));
+      }
+      place(g, g.lo, g.hi, &offsets);
+    }
+    for (int q = 0; q < g.count; ++q) {
+      ContactPoint& p = points_[at(g.first + q)];
+      tie_capacity_[at(g.first + q)] = law_->bond_tension(p);
+      p.bonded = true;
+      p.strength.tensile_strength = unlimited;
+    }
+  }
+}
+
+std::string ContactSystem::untenable_tension(const Model& model) const {
+  if (tie_capacity_.size() != points_.size())
+    return {};
+  // Net normal force and bond strength of the tied contacts between each pair of blocks.
+  struct Pair {
+    int a = -1;
+    int b = -1;
+    double normal = 0.0;
+    double capacity = 0.0;
+    double length = 0.0;
+    Point2 where = Point2::Zero();
+  };
+  std::vector<Pair> pairs;
+  const auto block_of = [&](int edge) { return model.elements[at(edge_element_[at(edge)])].block; };
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const ContactPoint& p = points_[i];
+    if (tie_capacity_[i] < 0.0 || p.mode == ContactMode::open)
+      continue;
+    const int a = std::min(block_of(p.slave_edge), block_of(p.master));
+    const int b = std::max(block_of(p.slave_edge), block_of(p.master));
+    auto it = std::find_if(pairs.begin(), pairs.end(),
+                           [&](const Pair& q) { return q.a == a && q.b == b; });
+    if (it == pairs.end()) {
+      pairs.push_back({a, b, 0.0, 0.0, 0.0, p.slave});
+      it = pairs.end() - 1;
+    }
+    it->normal += p.normal_force;
+    it->capacity += tie_capacity_[i];
+    it->length += p.length;
+  }
+  const auto name = [&](int block) {
+    for (const ModelElement& e : model.elements) {
+      if (e.block == block)
+        return "block " + std::to_string(block) + " (material \"" +
+               model.materials[at(e.material)].name + "\")";
+    }
+    return "block " + std::to_string(block);
+  };
+  for (const Pair& q : pairs) {
+    // Beyond the bonds by more than the rounding of the forces.
+    if (-q.normal <= q.capacity * (1.0 + 1e-9) + 1e-12 * std::abs(q.normal))
+      continue;
+    std::ostringstream out;
+    out.precision(4);
+    out << name(q.b) << " and " << name(q.a) << " near " << point_text(q.where, 6)
+        << " are held together by nothing but tension: their contacts would have to pull with "
+        << -q.normal << " N, and their bond's tensile strength holds " << q.capacity
+        << " N (tensile_strength times the " << q.length
+        << " m in contact); a tensile_strength of at least " << -q.normal / q.length
+        << " Pa on that joint, a support, or no initial_equilibrium lets it start";
+    return out.str();
+  }
+  return {};
 }
 
 bool ContactSystem::bonded_face(int face, int other) const {

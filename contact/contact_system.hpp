@@ -194,6 +194,17 @@ public:
   /// While set, closed contacts lock and never slide (the initial equilibrium: the shear
   /// springs take what friction could not); for the step begun last.
   void set_hold_shear(bool hold);
+  /// While set, set_hold_shear(true) also ties every touching contact (of some length):
+  /// bonded, with no limit to its tension, its springs along the whole overlap. The initial
+  /// equilibrium of a body that only tension or a tipping motion resolves (a block hanging
+  /// under a ceiling, a tall block that must topple) is then a solve of an elastic system
+  /// instead of a mechanism (TimeStepper::equilibrate()).
+  void set_tie(bool tie) noexcept { tie_ = tie; }
+  /// After a solve with the contacts tied: a description of the first pair of blocks whose
+  /// tied contacts pull on each other with more, net, than their bonds' tensile strength
+  /// holds (tensile_strength times the length in contact; nothing without a bond), or
+  /// empty. Such a pair is held together by nothing but that tension.
+  [[nodiscard]] std::string untenable_tension(const Model& model) const;
 
   /// What the chatter rule holds at the limit of friction in the contacts as they are: those
   /// of the last update_modes(), or of the converged solve that augment() or
@@ -340,6 +351,10 @@ private:
     /// its ends search (LiftOffEnd), for ContactOptions::lift_off_searches moves at most.
     bool searching = false;
     int searches = 0;
+    /// The shear springs' pre-shear of an in-situ contact (in_situ_traction()), m: its
+    /// points' anchors sit this far behind their slave points along the master when the
+    /// contact locks new.
+    double in_situ_shear = 0.0;
     /// Ends the search (its brackets hold for this overlap and these springs only).
     void stop_search() noexcept {
       searching = false;
@@ -486,6 +501,13 @@ private:
   // begin_step(), in parts.
   /// The boundary at the start of the step, and each edge's element, strength and bond.
   void set_up_boundary(const Model& model);
+  /// The traction of the initial stress across the contact of slave edge @p slave (and, for
+  /// an angle, the vertex's other edge @p slave_other) on @p master: (normal, compressive
+  /// positive; shear, the stretch of the shear springs along the master's direction times
+  /// their stiffness per unit length: t.sigma0 n), Pa. Zero unless every slave edge and the master
+  /// are faces of one joint curve: the joints the initial stress acts across (docs/formulation.md,
+  /// "In-situ stress").
+  [[nodiscard]] Point2 in_situ_traction(int slave, int slave_other, int master) const;
   /// Puts the spring of angle-to-angle candidate @p c on the entrance line with the smaller
   /// passing distance (Shi 3.2 [1]): @p p's slave and master.
   void choose_entrance_line(const ContactCandidate& c, ContactPoint& p) const;
@@ -515,6 +537,9 @@ private:
                      std::vector<std::pair<double, double>>& offsets);
   /// The shapes of the elements of every contact point's edges.
   void set_up_shapes(const Model& model);
+  /// Ties the touching contacts (set_tie()), keeping each point's own bond strength in
+  /// tie_capacity_.
+  void tie_touching();
 
   // update_modes(), in parts.
   /// Gap, shear and step motion of one point after a solve.
@@ -603,6 +628,10 @@ private:
   std::vector<int> edge_element_;
   std::vector<JointStrength> edge_strength_;
   std::vector<char> edge_bonded_;
+  /// Per boundary edge: the joint curve it is a face of (BoundaryEdge::joint) and the initial
+  /// stress of its material (sxx, syy, sxy).
+  std::vector<int> edge_joint_;
+  std::vector<Eigen::Vector3d> edge_stress_;
   /// Shapes of the elements the contact points' edges belong to, built once per step (the
   /// geometry stays put through a step; a VEM block's shape computes its projector), and
   /// each element's index into them (-1: none).
@@ -652,6 +681,10 @@ private:
   double converged_penetration_ = 0.0; ///< max_penetration() of converged_, m
   int last_changed_ = 0;
   bool hold_shear_ = false;
+  bool tie_ = false;
+  /// Per point, after a tie: the tension its own bond holds (JointLaw::bond_tension()), N;
+  /// -1 for a point not tied.
+  std::vector<double> tie_capacity_;
   double held_open_penetration_ = 0.0; ///< deepest a contact held open may penetrate, m
   /// update_modes(): (shear - limit, shear / limit) of each lock held beyond its friction
   /// limit (kept for its storage)

@@ -1055,6 +1055,17 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   const fs::path summary_file = dir / "summary.json";
   update_summary("running");
   write_summary_json(summary_file, summary); // also proves the folder writable
+  // The status of a run stopped by an error, in summary.json.
+  const auto record_failure = [&](const std::exception& error) {
+    try {
+      // An output that could not be written (a full disk, a file-size limit) is a failure of
+      // the run, not of the case: its status says so ("failed: disk full: ...").
+      const bool output_failed = dynamic_cast<const OutputWriteError*>(&error) != nullptr;
+      update_summary(output_failed ? "failed: " + std::string(error.what()) : error.what());
+      write_summary_json(summary_file, summary);
+    } catch (const std::exception&) { // the first error is the one to report
+    }
+  };
 
   PvdSeries pvd(dir / "case.pvd", step_part_names());
   long written = -1;
@@ -1069,8 +1080,14 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     summary.max_penetration = restored->max_penetration;
   } else {
     history.emplace(dir / "history.csv", monitor_names);
-    if (spec.analysis.initial_equilibrium)
-      analysis.equilibrate();
+    if (spec.analysis.initial_equilibrium) {
+      try {
+        analysis.equilibrate();
+      } catch (const std::exception& error) { // (the summary says why, as for a step)
+        record_failure(error);
+        throw;
+      }
+    }
     initial_points = step_points(model);
   }
   const auto write_checkpoint_now = [&] {
@@ -1158,14 +1175,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
         write_step(step);
     } catch (const std::exception&) { // the first error is the one to report
     }
-    try {
-      // An output that could not be written (a full disk, a file-size limit) is a failure of
-      // the run, not of the case: its status says so ("failed: disk full: ...").
-      const bool output_failed = dynamic_cast<const OutputWriteError*>(&error) != nullptr;
-      update_summary(output_failed ? "failed: " + std::string(error.what()) : error.what());
-      write_summary_json(summary_file, summary);
-    } catch (const std::exception&) { // the first error is the one to report
-    }
+    record_failure(error);
     throw;
   }
 

@@ -162,6 +162,15 @@ TryVerdict judge_displacement(const StepContext& context, TrySolution& solution,
   const double limit = context.kind.limit;
   const double largest = context.model.largest_displacement(solution.raw);
   solution.largest = largest;
+  // The initial equilibrium is of small deformations: a solve that moves a point farther
+  // than the model's size found a body held by nothing but a near-mechanism (its springs
+  // lifted off to a corner), not an equilibrium.
+  if (context.kind.equilibrium && !(largest <= context.model_size)) {
+    std::ostringstream w;
+    w << "a solve moves a point by " << largest << " m, more than the model's size ("
+      << context.model_size << " m)";
+    throw NumericalError(w.str());
+  }
   // Dynamic steps, and static ones with contact (their inertia term lets free bodies move
   // by g dt² / 2 in a step), are cut to the step displacement limit (Shi 8.5).
   if (!(largest > limit && context.kind.inertial))

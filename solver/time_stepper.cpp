@@ -149,13 +149,34 @@ Point2 TimeStepper::velocity_at(int element, const Point2& x) const {
 StepReport TimeStepper::step(double until) { return advance(until, false); }
 
 StepReport TimeStepper::equilibrate() {
+  const auto failure = [](const std::string& what) {
+    return NumericalError("initial equilibrium: " + what +
+                          " (the initial equilibrium needs every body held by supports or by "
+                          "contacts that touch)");
+  };
   try {
     return advance(time_, true);
   } catch (const NumericalError& e) {
-    throw NumericalError(std::string("initial equilibrium: ") + e.what() +
-                         " (the initial equilibrium needs every body held by supports or by "
-                         "contacts that touch)");
+    if (!impl_->contact)
+      throw failure(e.what());
   }
+  // Locked contacts could not hold a body: one that only tension holds (a block under a
+  // ceiling whose springs open), or one that must tip (its base's springs lift off to a
+  // corner, a mechanism). Tied (ContactSystem::set_tie()), every touching contact holds;
+  // then a pair of blocks that pulls on each other, net, beyond its bond's strength cannot
+  // start from rest, and one whose contacts only press where it tips starts tipping.
+  impl_->contact->set_tie(true);
+  StepReport report;
+  try {
+    report = advance(time_, true);
+  } catch (const NumericalError& e) {
+    impl_->contact->set_tie(false);
+    throw failure(e.what());
+  }
+  impl_->contact->set_tie(false);
+  if (const std::string pulled = impl_->contact->untenable_tension(model_); !pulled.empty())
+    throw NumericalError("initial equilibrium: " + pulled);
+  return report;
 }
 
 StepReport TimeStepper::advance(double until, bool equilibrium) {

@@ -741,6 +741,23 @@ TEST_F(Cli, NumericalFailureLeavesTheStartAndTheReasonAndExitsWith3) {
     static_cast<void>(read_step(out / entry.file, entry.time));
 }
 
+TEST_F(Cli, FailedInitialEquilibriumLeavesItsReasonInTheSummary) {
+  // The plate held only in y, with the initial equilibrium: rounding leaves the matrix just
+  // positive definite and the solve moves the plate 9.3e10 m. That is no equilibrium: the
+  // run stops before its first step (it went on into a singular first step from there until
+  // 2026-12-02), and summary.json says why, as for a step that fails (it said "running").
+  const std::string text = replaced(replaced(testing::plate_case, "fix = \"xy\"", "fix = \"y\""),
+                                    "[analysis]\n", "[analysis]\ninitial_equilibrium = true\n");
+  const fs::path file = testing::write_case(dir(), text);
+  const ProcessResult run = nmm({"run", file.string(), "--quiet"});
+  EXPECT_EQ(run.exit_code, 3) << run.err;
+  const testing::Json summary = parse_json(read_text(dir() / "out" / "summary.json"));
+  const std::string status = summary.at("status").string;
+  EXPECT_EQ(status.rfind("initial equilibrium: ", 0), 0u) << status;
+  EXPECT_NE(status.find("more than the model's size"), std::string::npos) << status;
+  EXPECT_EQ(summary.at("steps").number, 0.0);
+}
+
 TEST_F(Cli, OrderOneModelWithASliverOfATinyCoverSolvesAsWithoutIt) {
   // examples/05_plate_with_hole made 10 hole diameters wide: one math node keeps a sliver of
   // 2e-8 of its star, a tiny cover. Before 2026-11-26 it left near-null modes with order-1

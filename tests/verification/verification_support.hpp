@@ -267,4 +267,89 @@ struct Incline {
   }
 };
 
+/// A b x h block standing on a ramp of angle alpha with friction enough to hold it from
+/// sliding (phi = 45 > alpha): it topples when b / h < tan(alpha), its centroid then beyond
+/// the downhill corner.
+struct Topple {
+  double alpha_degrees = 20.0;
+  double width = 0.3;
+  double height = 1.0;
+  int order = 0;
+  /// Start from the initial equilibrium (TimeStepper::equilibrate()) instead of unloaded
+  /// springs.
+  bool equilibrium = false;
+  /// Of the last rotation(): the largest kinetic energy of a step over the work of the loads
+  /// up to it (the energy of a block that falls over is gravity's work on it).
+  mutable double energy_ratio = 0.0;
+
+  /// The block's rotation after @p duration s, rad (positive: downhill).
+  [[nodiscard]] double rotation(double duration) const {
+    const double alpha = alpha_degrees * std::numbers::pi / 180.0;
+    const Point2 along(std::cos(alpha), std::sin(alpha)); // up the ramp
+    const Point2 up(-std::sin(alpha), std::cos(alpha));
+    const Point2 a = 2.0 * along; // the block's downhill corner
+    const Point2 b = a + width * along;
+    MaterialRegion block{"block", {{{a, b, b + height * up, a + height * up}, {}}}};
+    const Point2 down = -0.5 * up;
+    const Point2 end = 5.0 * along;
+    MaterialRegion ramp{"ramp", {{{{0, 0}, down, end + down, end}, {}}}};
+    const ElasticMaterial rock = testing::elastic(1e10, 0.25, 2500.0, PlaneCondition::strain);
+    testing::Setup s = testing::make_setup(
+        {ramp, block}, {testing::line("seat", a, b), testing::line("base", down, end + down)}, {0},
+        nullptr, 0.1, rock, order);
+    Scene scene;
+    scene.supports = curve_support_points(s.model, 1, true, true, SupportMethod::exact, "base");
+    scene.body_loads.push_back({{0.0, -9.81}, {}});
+    // Two points of the block on its axis: their line turns with the block.
+    const Point2 low = a + 0.5 * width * along + 0.1 * height * up;
+    const Point2 high = a + 0.5 * width * along + 0.9 * height * up;
+    scene.monitors.push_back({s.model.find_element(low, 1e-9), low});
+    scene.monitors.push_back({s.model.find_element(high, 1e-9), high});
+    StepperOptions options;
+    options.time_step = 2e-3;
+    TimeStepper stepper(
+        s.model, scene, options,
+        testing::contact_for(s.model, 40.0 * 1e10, {std::numbers::pi / 4, 0.0, 0.0}));
+    if (equilibrium)
+      (void)stepper.equilibrate();
+    const Point2 axis0 =
+        stepper.scene().monitors[1].position - stepper.scene().monitors[0].position;
+    energy_ratio = 0.0;
+    while (stepper.time() < duration - 1e-9) {
+      const StepReport report = stepper.step(duration);
+      if (report.load_work > 0.0)
+        energy_ratio = std::max(energy_ratio, report.kinetic_energy / report.load_work);
+    }
+    const Point2 axis = stepper.scene().monitors[1].position - stepper.scene().monitors[0].position;
+    // Downhill is anticlockwise for a ramp rising to the right.
+    return std::atan2(axis0.x() * axis.y() - axis0.y() * axis.x(), axis0.dot(axis));
+  }
+
+  /// The rigid block's rotation about its downhill corner after @p duration s from rest:
+  /// I theta'' = m g r sin(delta0 + theta), I = m (b² + h²) / 3 about the corner, r the
+  /// corner's distance to the centroid, delta0 the centroid's angle beyond the vertical
+  /// through the corner (RK4 in steps of 1e-5 s, converged to 1e-9 rad).
+  [[nodiscard]] double rigid_rotation(double duration) const {
+    const double alpha = alpha_degrees * std::numbers::pi / 180.0;
+    const double x = 0.5 * width * std::cos(alpha) - 0.5 * height * std::sin(alpha);
+    const double y = 0.5 * width * std::sin(alpha) + 0.5 * height * std::cos(alpha);
+    const double delta0 = std::atan2(-x, y);
+    const double r = 0.5 * std::hypot(width, height);
+    const double inertia = (width * width + height * height) / 3.0; // per unit mass
+    auto acceleration = [&](double theta) { return 9.81 * r * std::sin(delta0 + theta) / inertia; };
+    double theta = 0.0;
+    double omega = 0.0;
+    const double h = 1e-5;
+    for (int i = 0; i < static_cast<int>(std::lround(duration / h)); ++i) {
+      const double k1 = omega, l1 = acceleration(theta);
+      const double k2 = omega + 0.5 * h * l1, l2 = acceleration(theta + 0.5 * h * k1);
+      const double k3 = omega + 0.5 * h * l2, l3 = acceleration(theta + 0.5 * h * k2);
+      const double k4 = omega + h * l3, l4 = acceleration(theta + h * k3);
+      theta += h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+      omega += h / 6.0 * (l1 + 2.0 * l2 + 2.0 * l3 + l4);
+    }
+    return theta;
+  }
+};
+
 } // namespace nmm::testing
