@@ -33,7 +33,7 @@ and touches every buffer for the first time, which a run of three steps counts a
 each. The goal at 10000 DDA blocks is then also judged on that steady time. The rock mass
 dropped from rest stays nearly still for about 40 steps (one solve a step) and then moves
 (about 14 open-close iterations a step): `--sizes 10000 --models dda --solvers pcg --no-wall
---steps 10000:40 --steady 2` times steps 41-80 (docs/benchmarks.md, "Conjugate gradients").
+--steps 10000:40 --steady 2` times steps 41-80 (docs/benchmarks.md, "Blocks: DDA, VEM, NMM and conjugate gradients").
 
 The machine's load changes every time: the script prints the 1-minute load average before
 and after each run, and the CPU model. Times are wall-clock as nmm measures them.

@@ -57,8 +57,8 @@ bool ContactSystem::augment(Eigen::VectorXd& raw) {
 
 bool ContactSystem::back_to_converged(Eigen::VectorXd& raw) {
   // Only a solve that nearly met the tolerance: a deeper one (a landing impact the passes
-  // could not hold) is better cut, which shortens the impact's step (the 1000-block pile:
-  // falling back on any, its deepest contact was 2.0 mm instead of 0.52 mm).
+  // could not hold) is better cut, which shortens the impact's step and so its penetration
+  // (docs/formulation.md, "Augmented Lagrange").
   if (!has_converged_ || converged_penetration_ > fallback_depth * options_.penetration_tolerance)
     return false;
   back_to_kept(raw);

@@ -650,7 +650,7 @@ private:
   /// Closed contacts of the last step: their states and keys in the order end_step() stored
   /// them, where each key's state is, and the anchors of all of them (flat: a step of 10,004
   /// DDA blocks carries 60,000 contacts, and a hash map's node and anchor vector per contact
-  /// took 10 % of it).
+  /// would be a sizeable part of the step).
   std::vector<Carried> carried_;
   std::vector<std::uint64_t> carried_keys_;
   KeyIndex carried_index_;

@@ -15,10 +15,10 @@ namespace nmm {
 /// flat table with linear probing: the detection builds four sets of tens of thousands of
 /// keys every step and the contacts look up the states carried from the last step by key,
 /// and std::unordered_set's and std::unordered_map's allocation per key, rehashing and
-/// scattered nodes took 6 % and 10 % of a step of 10,004 DDA blocks (docs/benchmarks.md,
-/// "Conjugate gradients"). Lookups only: no iteration, so the order of the table never
-/// shows, and neither does the hash. The key with all bits set is reserved (no contact key
-/// or pair of indices is it).
+/// scattered nodes are a sizeable part of a step of thousands of blocks (docs/benchmarks.md,
+/// "Blocks: DDA, VEM, NMM and conjugate gradients"). Lookups only: no iteration, so the order of
+/// the table never shows, and neither does the hash. The key with all bits set is reserved (no
+/// contact key or pair of indices is it).
 ///
 /// The table keeps near indices near: a key's probe starts at 8 times its high 32 bits (a
 /// pair's lower index, twice a contact's slave) plus 0 to 7 from its low bits, so the keys of

@@ -22,8 +22,7 @@ void limit_threads(int n);
 
 /// Runs OpenBLAS and OpenMP (CHOLMOD's own loops) on one thread while it lives (then
 /// restores the previous counts): for small factorizations, whose supernodes are too small
-/// for a second thread to pay for waking it (docs/benchmarks.md "CHOLMOD threads" and
-/// "Blocks: DDA, VEM, NMM").
+/// for a second thread to pay for waking it (docs/benchmarks.md, "CHOLMOD threads").
 class SingleBlasThread {
 public:
   SingleBlasThread();
@@ -47,10 +46,10 @@ private:
 /// body on the calling thread at once. nmm runs every OpenMP region on one thread anyway
 /// (limit_threads(), SingleBlasThread: the only ones are CHOLMOD's), but libgomp still builds a
 /// team for each, with a malloc and a futex system call at its end, and CHOLMOD's supernodal
-/// factorisation opens two or more regions per supernode: 330 system calls a factorisation of
-/// the 70-block wall (412 unknowns), 40% of its factorisation time (docs/benchmarks.md,
-/// "Blocks"). The executable's definition takes precedence over libgomp's for every shared
-/// library (the dynamic linker looks in the executable first). The body sees the same as in an
-/// inactive region: omp_get_num_threads() 1, omp_get_thread_num() 0; worksharing constructs in
-/// it run as orphaned ones, on this thread alone.
+/// factorisation opens two or more regions per supernode, and for a factorisation of a few
+/// hundred unknowns those system calls are a large part of its time (docs/benchmarks.md,
+/// "Blocks: DDA, VEM, NMM and conjugate gradients"). The executable's definition takes precedence
+/// over libgomp's for every shared library (the dynamic linker looks in the executable first). The
+/// body sees the same as in an inactive region: omp_get_num_threads() 1, omp_get_thread_num() 0;
+/// worksharing constructs in it run as orphaned ones, on this thread alone.
 extern "C" void GOMP_parallel(void (*body)(void*), void* data, unsigned threads, unsigned flags);

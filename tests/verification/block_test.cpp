@@ -329,7 +329,8 @@ TEST(VemBlock, ContactCouplesOnlyTheVerticesOfTheEdgesInContact) {
   // vertices or points on one edge, so a contact couples at most 4 vertices (8 unknowns),
   // whatever the blocks' sizes. Coupling every unknown of both blocks made a contact on the
   // 188-vertex foundation of the 10,004-block rock mass a 380 x 380 matrix (4.9 of its 10 s
-  // of steps; docs/benchmarks.md, "Blocks"). Exact counts, no tolerance.
+  // of steps; docs/benchmarks.md, "Blocks: DDA, VEM, NMM and conjugate gradients"). Exact counts,
+  // no tolerance.
   testing::Setup s = testing::row_of_blocks_on_a_base(ElementKind::vem);
   ASSERT_EQ(s.model.n_elements(), 5);
   std::size_t largest_block = 0;

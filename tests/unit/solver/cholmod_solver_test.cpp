@@ -156,12 +156,12 @@ TEST(CholmodSolver, SmallFactorizationsGiveTheSameAnswerOnOneThread) {
 TEST(CholmodSolver, SmallFactorsAreSolvedOnOneThreadAsWell) {
   // A factor made on one thread (below single_thread_flops) is solved on one thread too:
   // OpenBLAS split the larger dgemv calls of the triangular solves between two threads, and
-  // the second then spun in sched_yield between calls (docs/benchmarks.md, "Blocks"). The
-  // answer is then the same to the last bit whatever limit_threads() allows (measured before:
-  // it differed, and so did the open-close decisions of a 1,003-block rock mass: 248 against
-  // 303 factorisations). 6.25e4 unknowns (below 2e9 flops): the top separators give dgemv calls of
-  // about 250 x 500, which OpenBLAS runs on two threads (with 1.4e4 unknowns the answers
-  // agreed even before).
+  // the second then spun in sched_yield between calls (docs/benchmarks.md, "Blocks: DDA, VEM, NMM
+  // and conjugate gradients"). The answer is then the same to the last bit whatever limit_threads()
+  // allows (a solve split between threads sums in another order, and the open-close decisions of a
+  // rock mass follow its last bits). 6.25e4 unknowns (below 2e9 flops): the top separators give
+  // dgemv calls of about 250 x 500, which OpenBLAS runs on two threads (with 1.4e4 unknowns the
+  // answers agreed even before).
   const SparseMatrix a = laplacian(250, 1e-3);
   const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
   std::vector<Eigen::VectorXd> solutions;
