@@ -329,7 +329,8 @@ void ContactSystem::set_forces(const Group& g,
     ContactPoint& p = points_[at(g.first + q)];
     const double share = placed > 0.0 ? p.stiffness / placed : 0.0;
     // An open bond pulls with its tensile strength (contribution()): a tensile normal force.
-    p.normal_force = closed(after) ? now * share : -law_->bond_tension(p);
+    const double pull = law_->bond_tension(p);
+    p.normal_force = closed(after) ? now * share : pull > 0.0 ? -pull : 0.0;
     p.shear_force = after == ContactMode::lock ? p.stiffness * measure[at(q)].shear
                     : after == ContactMode::slide
                         ? sign * (std::max(0.0, now) * r.friction * share + law_->bond_cohesion(p))

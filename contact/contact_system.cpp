@@ -236,7 +236,9 @@ void ContactSystem::add_angle_point(const ContactCandidate& c,
   // Across a joint under initial stress, the springs pre-compressed and pre-sheared to carry
   // the in-situ traction on the point's length (none for a corner of no length).
   const Point2 traction = in_situ_traction(v, boundary_.previous[at(v)], p.master);
-  p.shift = traction.x() * p.length / p.stiffness;
+  // A tensile initial stress pre-loads only a bond (an unbonded joint carries no tension).
+  p.shift = p.bonded ? traction.x() * p.length / p.stiffness
+                     : std::max(0.0, traction.x() * p.length / p.stiffness);
   g.in_situ_shear = traction.y() * p.length / p.stiffness;
   g.count = 1;
   points_.push_back(p);
@@ -271,7 +273,7 @@ bool ContactSystem::add_edge_points(const ContactCandidate& c,
   // springs' stiffness per unit length is penalty / spring_length, the same at every point.
   const Point2 traction = in_situ_traction(c.slave, c.slave, c.master);
   const double compliance = options_.spring_length / options_.penalty;
-  p.shift = traction.x() * compliance;
+  p.shift = p.bonded ? traction.x() * compliance : std::max(0.0, traction.x() * compliance);
   g.in_situ_shear = traction.y() * compliance;
   g.count = gauss_;
   for (int q = 0; q < gauss_; ++q) {
@@ -315,8 +317,8 @@ void ContactSystem::start_contact(Group& g,
     normal_force = same ? state->normal : 0.0;
   } else if (lead.bonded && opened_.count(g.key) != 0) {
     // A bond that ended the last step open, yielded in tension, starts open (pulling with
-    // its strength): started locked with a new anchor, it opened again and the shear its
-    // springs had taken was lost every step, a creep of 1e-8 m a step.
+    // its strength): started locked with a new anchor, it would open again and lose the
+    // shear its springs had taken, every step (a creep).
     mode = ContactMode::open;
   } else if (lead.bonded || touching) {
     mode = ContactMode::lock;

@@ -36,7 +36,7 @@ struct EnergyLedger {
 /// The step just accepted, of time step @p dt, displacement @p raw, external loads
 /// @p external (StepSystem::external) and new kinetic energy @p kinetic, into
 /// @p ledger and @p report's energy fields. @p system: the try it was solved with; @p state:
-/// its element stiffnesses and stress loads. Call before the contacts' end_step() and before
+/// its element masses. Call before the contacts' end_step() and before
 /// the stresses and geometry move. The initial equilibrium only records its spring energy.
 void account_energy(const StepContext& context,
                     const StepSystemState& state,

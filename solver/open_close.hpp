@@ -39,9 +39,10 @@ inline constexpr int open_close_cap = 30;
 /// changed mode in one iteration of the try so far, and @p bodies, the bodies of the model,
 /// at most open_close_cap. A block system where hundreds of contacts between many bodies
 /// change at once (blocks landing, slabs starting to slide) gets the iterations those
-/// changes take to settle (7 to 24 measured), while a scene of at most three bodies, however
-/// many of its contact points change together, keeps Shi's six (a block's base on an NMM
-/// ramp given more settled on a slide 2% too long). Ten times the given or base budget for a
+/// changes take to settle, while a scene of at most three bodies, however many of its
+/// contact points change together, keeps Shi's six: a block's base on an NMM ramp given
+/// more iterations settles on too long a slide (docs/formulation.md, "Open-close budget"). Ten
+/// times the given or base budget for a
 /// @p settling step (the initial equilibrium, a static step that barely moves).
 [[nodiscard]] int
 open_close_limit(const std::optional<int>& given, int most_changes, int bodies, bool settling);

@@ -186,6 +186,7 @@ struct ElementWork {
   Eigen::VectorXd loads;
   Eigen::VectorXd velocity;
   Eigen::VectorXd inertia_load;
+  Eigen::VectorXd stress_load;
 };
 
 /// Adds element @p e's stiffness, body forces and initial-stress load, and with the mass its
@@ -206,11 +207,10 @@ void assemble_element(const StepContext& context,
   const double t1 = context.time + dt;
   integrals.stiffness(elasticity_matrix(material), material.thickness_factor(), work.local);
   element_load(model, e, integrals, context.scene.body_loads, t1, work.loads);
-  // The carried stresses' part of the loads, for the energy balance.
-  Eigen::VectorXd& stress_load = state.element_stress_load[at(e)];
+  // The carried stresses' part of the loads, not external work (the energy balance).
+  Eigen::VectorXd& stress_load = work.stress_load;
   integrals.loads(Point2::Zero(), element.stress, material.thickness_factor(), stress_load);
   integrals.add_stabilisation_load(element.stabilisation_force, stress_load);
-  state.element_stiffness[at(e)] = work.local;
   for (std::size_t i = 0; i < dofs.size(); ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     system.f(dofs[i]) += work.loads(k);
@@ -250,8 +250,6 @@ void assemble_step(const StepContext& context,
     add_curve_load(model, load, t1, system.f);
   system.loads = system.f;
   system.external = system.f;
-  state.element_stiffness.resize(model.elements.size());
-  state.element_stress_load.resize(model.elements.size());
   system.rhs_correction = Eigen::VectorXd::Zero(system.map->n_reduced());
   if (context.kind.with_mass)
     state.element_mass.resize(model.elements.size());

@@ -64,11 +64,6 @@ struct StepSystemState {
   /// Consistent mass of every element (times density and thickness), kept from the assembly
   /// for the kinetic energy of the new velocities.
   std::vector<ElementMass> element_mass;
-  /// Stiffness of every element (without the inertia) and its load of the carried stresses
-  /// and stabilisation forces, of the last try: the strain energy of the step's
-  /// displacement (energy_balance.hpp).
-  std::vector<Eigen::MatrixXd> element_stiffness;
-  std::vector<Eigen::VectorXd> element_stress_load;
   /// Reduced unknowns of every coupling, flat, with their starts: what the current plans
   /// were made for, compared to the next step's.
   std::vector<int> coupling_start;

@@ -40,8 +40,9 @@ struct StepperOptions {
   /// Open-close iterations with mode changes (each a refactorisation) per step before the
   /// step is cut (Shi 8.2). In a dynamic step, iterations that only move edge-to-edge
   /// springs along their overlaps do not count; no step has more than ten times this many
-  /// refactorisations. Empty: the budget of the scene (open_close_limit(): 6, or twice the
-  /// most contacts one iteration of the try changed, at most twice the bodies and 30).
+  /// refactorisations (ten times open_close_base without it). Empty: the budget of the scene
+  /// (open_close_limit(): 6, or twice the most contacts one iteration of the try changed, at most
+  /// twice the bodies and 30).
   std::optional<int> open_close_max;
   /// Solves with the same factor for friction alone (no mode changed, the friction loads
   /// still moving) per step before the step is cut.
