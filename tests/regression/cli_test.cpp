@@ -744,8 +744,7 @@ TEST_F(Cli, NumericalFailureLeavesTheStartAndTheReasonAndExitsWith3) {
 TEST_F(Cli, FailedInitialEquilibriumLeavesItsReasonInTheSummary) {
   // The plate held only in y, with the initial equilibrium: rounding leaves the matrix just
   // positive definite and the solve moves the plate 9.3e10 m. That is no equilibrium: the
-  // run stops before its first step (it went on into a singular first step from there until
-  // 2026-12-02), and summary.json says why, as for a step that fails (it said "running").
+  // run stops before its first step, and summary.json says why, as for a step that fails.
   const std::string text = replaced(replaced(testing::plate_case, "fix = \"xy\"", "fix = \"y\""),
                                     "[analysis]\n", "[analysis]\ninitial_equilibrium = true\n");
   const fs::path file = testing::write_case(dir(), text);

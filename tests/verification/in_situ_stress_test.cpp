@@ -179,7 +179,7 @@ TEST_P(JointedMass, StaysInEquilibriumUnderTheInitialStress) {
   // = 1e-5 m at each of three joints at 10 E: 3e-6 of the size, measured 2.5e-6 to 3.9e-6;
   // what is left now is rounding, below 1e-10 of the size); stress 0.1% of |syy0| at every
   // element vertex (springs from zero: up to 78% off at 40 E, in the elements where blocks
-  // meet each other and the boundary; now below 1e-5); the joint's force to 0.1% (the
+  // meet each other and the boundary; pre-loaded, below 1e-5); the joint's force to 0.1% (the
   // springs carry the traction in full from the first solve).
   const MassResult r = run_mass(GetParam());
   std::printf("%s: motion %.3g m (%.3g of the size), stress error %.3g, joint force %.6f\n",
@@ -403,7 +403,7 @@ TEST(InSituTunnel, JointedRockAroundAnOpeningReleasesTheExcavationsEnergyOnly) {
   // over the 1 m covers) lock and carry the in-situ traction from the first step, and only
   // slide where the excavation's stresses pass friction. Springs from zero instead let every
   // block expand into its neighbours first: 1.72 times the continuous rock's work (7,143 J
-  // against 4,146 J per metre); now 1.006 times. Tolerance 10%: what sliding near the
+  // against 4,146 J per metre); pre-loaded, 1.006 times. Tolerance 10%: what sliding near the
   // opening adds.
   const TunnelResult continuous = run_tunnel(false, false);
   const TunnelResult jointed = run_tunnel(true, false);
@@ -422,7 +422,7 @@ TEST(InSituTunnel, JointedRockGainsNoEnergyInTheStaticStepsAfterTheEquilibrium) 
   // never away from it, the kinetic energy stays 0, and the loads do a small part of the
   // excavation's work. With springs from zero the equilibrium's springs were pressed by the
   // blocks' expansion, and the steps did 9.2% of it (382 J, and at 1 E 76%, the wall pushed
-  // 13 um away from the opening); now 1.9%. Tolerance 5% of the continuous rock's
+  // 13 um away from the opening); pre-loaded, 1.9%. Tolerance 5% of the continuous rock's
   // excavation work.
   const TunnelResult continuous = run_tunnel(false, false);
   const TunnelResult after = run_tunnel(true, true);

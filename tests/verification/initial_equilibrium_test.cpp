@@ -109,8 +109,8 @@ TEST(InitialEquilibrium, AGluedBlockIsHeldWithinItsBondsStrengthAndRefusedBeyond
 TEST(InitialEquilibrium, ABlockThatMustToppleStartsToppling) {
   // A block with b / h = 0.85 tan(alpha) on a ramp (friction 45 degrees, so it cannot
   // slide): locked, its seat's springs lift off to the downhill corner and the solve is a
-  // mechanism (a singular matrix; nearly singular, it threw such a block 4e10 m, and a
-  // solve moving a point farther than the model's size is now no equilibrium); tied, it
+  // mechanism (a singular matrix; nearly singular, it can throw such a block 4e10 m, so a
+  // solve moving a point farther than the model's size is no equilibrium); tied, it
   // stands on its seat
   // with the uphill part pulling, and from there, untied, it topples as the rigid block
   // about its corner does (to 8%, the Topple family's tolerance in order_one_contact_test:

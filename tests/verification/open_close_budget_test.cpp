@@ -2,7 +2,7 @@
 // The open-close budget (issue 42, item 8): without open_close_max the budget grows with the
 // contacts that change mode in one iteration (open_close_limit()), so that a block system in
 // which hundreds of contacts close at once runs at the time step asked for; a given
-// open_close_max is obeyed as before.
+// open_close_max is the limit of every step.
 #include "solver/open_close.hpp"
 
 #include "verification_support.hpp"
@@ -99,8 +99,8 @@ struct SmallRockMass {
 TEST(OpenCloseBudget, BlocksLandingAtOnceRunAtTheTimeStepAskedForWithoutOpenCloseMax) {
   // The blocks drop into their unloaded contact springs at once: in the steps where they
   // land, dozens of contacts change mode in one iteration (the limit reaches the cap of 30)
-  // and settle in up to 12 iterations. Shi's fixed six, the old default, cut 16 of those
-  // steps (measured); the scene's budget lets them converge: no cut, so the 40 steps reach
+  // and settle in up to 12 iterations. Shi's fixed six cuts 16 of those steps
+  // (measured); the scene's budget lets them converge: no cut, so the 40 steps reach
   // 40 dt exactly.
   SmallRockMass fixed;
   fixed.open_close_max = 6;

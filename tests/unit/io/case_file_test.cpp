@@ -140,7 +140,7 @@ TEST(CaseFile, DesignExampleParsesToItsValues) {
   EXPECT_DOUBLE_EQ(spec.analysis.max_step_displacement, 0.01);
   EXPECT_DOUBLE_EQ(spec.analysis.penalty, 40.0);
   EXPECT_FALSE(spec.analysis.penalty_stiffness.has_value());
-  EXPECT_EQ(spec.analysis.open_close_max.value_or(0), 6); // given: obeyed as before
+  EXPECT_EQ(spec.analysis.open_close_max.value_or(0), 6); // given: the limit of every step
 
   ASSERT_EQ(spec.monitors.size(), 1u);
   EXPECT_EQ(spec.monitors[0].name, "crest");
