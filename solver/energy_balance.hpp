@@ -35,9 +35,10 @@ struct EnergyLedger {
 
 /// The step just accepted, of time step @p dt, displacement @p raw, external loads
 /// @p external (StepSystem::external) and new kinetic energy @p kinetic, into
-/// @p ledger and @p report's energy fields. @p system: the try it was solved with; @p state:
-/// its element masses. Call before the contacts' end_step() and before
-/// the stresses and geometry move. The initial equilibrium only records its spring energy.
+/// @p ledger and @p report's energy fields. @p state: the step system's element masses (the
+/// element matrices are integrated again for the strain energy). Call before the contacts'
+/// end_step() and before the stresses and geometry move. The initial equilibrium only
+/// records its spring energy.
 void account_energy(const StepContext& context,
                     const StepSystemState& state,
                     const Eigen::VectorXd& external,
