@@ -11,10 +11,13 @@ namespace nmm {
 namespace {
 
 /// Energy of a point's springs with gap @p gap and shear displacement @p shear in mode
-/// @p mode: p g² / 2 of a closed normal spring, pressed or bonded and pulled (Shi eq.
-/// 3.17-3.18), and p s² / 2 of a locked shear spring (eq. 3.25-3.26).
-double energy_of(ContactMode mode, double stiffness, double gap, double shear) {
-  if (mode == ContactMode::open || !(stiffness > 0.0))
+/// @p mode: p g² / 2 of a closed normal spring, pressed, or pulled when @p bonded (Shi eq.
+/// 3.17-3.18), and p s² / 2 of a locked shear spring (eq. 3.25-3.26). An unbonded closed
+/// point where the faces are apart holds nothing: it carries no tension, and springs that
+/// the lift-off moves onto a part of the overlap still open at the start of the step (it
+/// presses at the end) did not exist there then, nor did the shear their anchors carry.
+double energy_of(ContactMode mode, double stiffness, double gap, double shear, bool bonded) {
+  if (mode == ContactMode::open || !(stiffness > 0.0) || (!bonded && gap > 0.0))
     return 0.0;
   double energy = 0.5 * stiffness * gap * gap;
   if (mode == ContactMode::lock)
@@ -47,8 +50,8 @@ ContactSystem::SpringWork ContactSystem::spring_work(const Model& model,
     const Kinematics& k = cached_kinematics(model, p, i);
     const double g1 = k.gap(raw);
     const double s1 = k.s0 + k.tangential(raw);
-    const double start = energy_of(before, p.stiffness, k.g0, k.s0);
-    const double end = energy_of(p.mode, p.stiffness, g1, s1);
+    const double start = energy_of(before, p.stiffness, k.g0, k.s0, start_.points[i].bonded);
+    const double end = energy_of(p.mode, p.stiffness, g1, s1, p.bonded);
     double done = tension > 0.0 ? tension * (g1 - k.g0) : 0.0;
     if (p.mode != ContactMode::open)
       done += p.stiffness * g1 * (g1 - k.g0);
