@@ -135,6 +135,11 @@ OverlapPart ContactSystem::lift_off_part(const LiftOff& l, double total_normal) 
         g.from_end = LiftOffEnd{from - g.from};
         g.to_end = LiftOffEnd{to - g.to};
       }
+    } else if (g.settled && overlap && l.pushing > l.bearing && pushes) {
+      // The search is spent and the part left out would still take more than all the pair
+      // bears: the springs take it in (growing, as shrinking, cannot cycle).
+      from = std::min(from, g.from);
+      to = std::max(to, g.to);
     } else if (g.settled && overlap) {
       from = std::max(from, g.from);
       to = std::min(to, g.to);
