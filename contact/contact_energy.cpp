@@ -5,6 +5,7 @@
 #include "contact/contact_system.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace nmm {
 
@@ -37,7 +38,11 @@ ContactSystem::SpringWork ContactSystem::spring_work(const Model& model,
   // started with, what its springs do not hold at the end is lost: p (g1 - g0)² / 2 for a
   // spring closed throughout, the whole start energy of one that opened or slipped. A point
   // whose springs end with more than that (a spring that started stretched while it was
-  // open: an overlap found by the detection) made energy.
+  // open: an overlap found by the detection) made energy. A lock that opened and closed
+  // again in the step has a new anchor (its entrance position): its shear spring at the
+  // start is the one of the anchor the step began with, not the new one, which did not
+  // exist then. (Springs the lift-off moves along a pair are taken where they end: the
+  // pair's pressed part at the start geometry, as the next step's detection places them.)
   SpringWork work;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const ContactPoint& p = points_[i];
@@ -50,7 +55,11 @@ ContactSystem::SpringWork ContactSystem::spring_work(const Model& model,
     const Kinematics& k = cached_kinematics(model, p, i);
     const double g1 = k.gap(raw);
     const double s1 = k.s0 + k.tangential(raw);
-    const double start = energy_of(before, p.stiffness, k.g0, k.s0, start_.points[i].bonded);
+    const ContactPoint& s = start_.points[i];
+    const bool anchored_anew = s.anchor != p.anchor && s.slave == p.slave && s.master == p.master &&
+                               s.stiffness == p.stiffness;
+    const double s0 = anchored_anew ? start_gap_and_shear(s).second : k.s0;
+    const double start = energy_of(before, p.stiffness, k.g0, s0, s.bonded);
     const double end = energy_of(p.mode, p.stiffness, g1, s1, p.bonded);
     double done = tension > 0.0 ? tension * (g1 - k.g0) : 0.0;
     if (p.mode != ContactMode::open)

@@ -53,6 +53,18 @@ double ContactSystem::projection(int master, const Point2& x) const {
   return (x - a).dot(edge) / edge.squaredNorm();
 }
 
+std::pair<double, double> ContactSystem::start_gap_and_shear(const ContactPoint& p) const {
+  const Point2& a = boundary_.position[at(p.master)];
+  const Point2& b = boundary_.position[at(boundary_.next[at(p.master)])];
+  const double l = (b - a).norm();
+  // Normal gap (material on the left of a -> b; positive on the void side), and the shear
+  // displacement of the slave point P1 relative to the anchor P0 along the edge (Shi eq.
+  // 3.21).
+  const double gap = (p.slave - a).dot(perp(b - a)) / l - p.offset - p.shift;
+  const Point2 anchor = a + p.anchor * (b - a);
+  return {gap, (p.slave - anchor).dot((b - a) / l)};
+}
+
 const ElementShape& ContactSystem::shape(int element) const {
   NMM_ASSERT(element >= 0 && at(element) < shape_of_element_.size() &&
                  shape_of_element_[at(element)] >= 0,
@@ -90,7 +102,8 @@ void ContactSystem::kinematics(const Model& model,
   // Normal gap (material on the left of a -> b; positive on the void side):
   // g = cross(P1 - A, B - A) / l, linearised: u1 . perp(B - A) + uA . perp(P1 - B)
   // - uB . perp(P1 - A), all over l (Shi eq. 3.12 with our orientation).
-  k.g0 = (slave - a).dot(perp(b - a)) / l - p.offset - p.shift;
+  const auto [gap0, shear0] = start_gap_and_shear(p);
+  k.g0 = gap0;
   std::array<Term, 5>& master_normal = terms.master_normal;
   std::size_t& n_master_normal = terms.n_master_normal;
   master_normal[n_master_normal++] = {a, perp(slave - b) / l};
@@ -107,7 +120,7 @@ void ContactSystem::kinematics(const Model& model,
   }
   // Shear displacement of P1 relative to the anchor P0 along the edge (Shi eq. 3.21).
   const Point2 anchor = a + p.anchor * (b - a);
-  k.s0 = (slave - anchor).dot(tangent);
+  k.s0 = shear0;
   terms.master_shear = {anchor, Point2(-tangent)};
   k.dofs.clear();
   // The unknowns the point's terms involve, each at the position of its first use: the

@@ -497,6 +497,9 @@ private:
   void break_yielded_interfaces(const Model& model, const Eigen::VectorXd& raw);
   /// Anchor parameter on the master of the projection of slave point @p x.
   [[nodiscard]] double projection(int master, const Point2& x) const;
+  /// The gap (less the point's offset and shift) and the shear displacement from its anchor
+  /// of @p p in the geometry of the step's start: Kinematics::g0 and Kinematics::s0.
+  [[nodiscard]] std::pair<double, double> start_gap_and_shear(const ContactPoint& p) const;
 
   // begin_step(), in parts.
   /// The boundary at the start of the step, and each edge's element, strength and bond.
