@@ -147,10 +147,10 @@ void judge_balance(const StepContext& context,
                    const StepReport& report,
                    const Eigen::VectorXd& velocity,
                    bool& warned) {
-  // Judged in dynamic steps, where the balance is verified; Shi's static steps report it
-  // only (docs/formulation.md, "Energy balance"), and so do scenes with penalty supports or
-  // imposed displacements, whose springs and reactions' work are not in its terms.
-  if (!context.kind.dynamic)
+  // Judged in dynamic steps and in Shi's static steps with inertia (docs/formulation.md,
+  // "Energy balance"); not in the initial equilibrium, nor in scenes with penalty supports
+  // or imposed displacements, whose springs and reactions' work are not in its terms.
+  if (context.kind.equilibrium || !context.kind.with_mass)
     return;
   for (const SupportPoint& support : context.scene.supports) {
     if (support.method == SupportMethod::penalty || !support.displacement.isZero())
@@ -168,10 +168,18 @@ void judge_balance(const StepContext& context,
        << report.dissipated_energy << " J, external work " << report.external_work
        << " J), more than " << (stop ? "energy_error_limit" : "energy_tolerance") << " ("
        << (stop ? *options.energy_error_limit : options.energy_tolerance) << ")";
-  text << "; " << fastest_cover_text(context.model, velocity);
-  text << ": energy is made or lost by the contact springs (an overlapping start, contacts "
-          "pushed through), or the time step is too large; try a smaller time_step or "
-          "max_step_displacement, or a smaller penalty";
+  if (context.kind.dynamic) {
+    text << "; " << fastest_cover_text(context.model, velocity);
+    text << ": energy is made or lost by the contact springs (an overlapping start, contacts "
+            "pushed through), or the time step is too large; try a smaller time_step or "
+            "max_step_displacement, or a smaller penalty";
+  } else {
+    text << ": the contact springs found faces overlapping that a step moved past each other "
+            "without springs (a load step too large for the contacts' linearised gaps, or "
+            "faces left out of the contact); the result of the static steps may still be "
+            "right, but check it: try a ramp on the loads ([[load]] ramp) over more steps, a "
+            "smaller max_step_displacement, or a smaller penalty";
+  }
   if (stop)
     throw NumericalError(text.str());
   context.warnings.push_back(text.str());
