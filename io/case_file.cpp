@@ -86,7 +86,7 @@ constexpr std::string_view analysis_keys[] = {"kind",
                                               "energy_error_limit",
                                               "velocity_ratio"};
 constexpr std::string_view monitor_keys[] = {"name", "point"};
-constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every"};
+constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every", "moved_threshold"};
 
 constexpr std::string_view top_level_name = "the top level";
 
@@ -941,6 +941,10 @@ OutputSpec read_output(Context& context, const toml::table& root, const std::str
   }
   spec.every = view.small_integer_or("every", 1, 1, 100'000'000, "10");
   spec.checkpoint_every = view.small_integer_or("checkpoint_every", 0, 0, 100'000'000, "1000");
+  spec.moved_threshold = view.number("moved_threshold", "m", "0.01");
+  if (spec.moved_threshold && !(*spec.moved_threshold >= 0.0))
+    view.fail_range("moved_threshold", *spec.moved_threshold,
+                    "the displacement beyond which a block counts as moved must be >= 0 (m)");
   return spec;
 }
 

@@ -214,6 +214,9 @@ struct OutputSpec {
   int every = 1;
   /// Write a restart checkpoint every this many steps, >= 0; 0 = only when the run stops.
   int checkpoint_every = 0;
+  /// `moved_threshold`: summary.json's `moved_blocks` lists the blocks whose centroid moved
+  /// farther than this, >= 0, m; absent: no `moved_blocks` key.
+  std::optional<double> moved_threshold;
 };
 
 /// The whole case file, every default applied (see docs/case-file.md).

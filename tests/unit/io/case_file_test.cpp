@@ -196,6 +196,7 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_EQ(spec.output.dir, fs::path("out"));
   EXPECT_EQ(spec.output.every, 1);
   EXPECT_EQ(spec.output.checkpoint_every, 0);
+  EXPECT_FALSE(spec.output.moved_threshold.has_value());
   EXPECT_TRUE(spec.warnings.empty());
 }
 
@@ -341,7 +342,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "max_step_displacement = 0.5\n"
       "initial_equilibrium = true\npenetration_tolerance = 1e-4\n"
       "energy_tolerance = 0.02\nenergy_error_limit = 0.3\nvelocity_ratio = 0.9\n"
-      "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 25\n";
+      "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 25\nmoved_threshold = 0.05\n";
   const CaseSpec spec = parse_case_text(text, "case.toml");
   EXPECT_EQ(spec.title, "Dam on a jointed foundation");
   EXPECT_EQ(spec.cover_mesh.kind, CoverMeshKind::gmsh);
@@ -374,6 +375,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_EQ(spec.output.dir, fs::path("/tmp/dam"));
   EXPECT_EQ(spec.output.every, 5);
   EXPECT_EQ(spec.output.checkpoint_every, 25);
+  EXPECT_DOUBLE_EQ(spec.output.moved_threshold.value(), 0.05);
   // The only material is a VEM one, so the cover function order is unused.
   ASSERT_EQ(spec.warnings.size(), 1u);
   EXPECT_NE(spec.warnings[0].find("order has no effect"), std::string::npos) << spec.warnings[0];
@@ -600,6 +602,9 @@ std::vector<BadCase> bad_cases() {
       {"OutputEveryZero", minimal + "[output]\nevery = 0 # <-\n", "[output] every = 0 is out"},
       {"NegativeCheckpoint", minimal + "[output]\ncheckpoint_every = -1 # <-\n",
        "checkpoint_every = -1"},
+      {"NegativeMovedThreshold", minimal + "[output]\nmoved_threshold = -0.1 # <-\n",
+       "[output] moved_threshold = -0.1 is out of range; the displacement beyond which a block "
+       "counts as moved must be >= 0 (m)"},
       {"PcgToleranceTooLoose", minimal + "solver = \"pcg\"\npcg_tolerance = 0.01 # <-\n",
        "pcg_tolerance = 0.01 is out of range"},
       {"PcgToleranceZero", minimal + "pcg_tolerance = 0 # <-\n",
