@@ -12,13 +12,14 @@ namespace {
 
 /// Energy of a point's springs with gap @p gap and shear displacement @p shear in mode
 /// @p mode: p g² / 2 of a closed normal spring, pressed or bonded and pulled (Shi eq.
-/// 3.17-3.18), and p s² / 2 of a locked shear spring (eq. 3.25-3.26).
-double energy_of(ContactMode mode, double stiffness, double gap, double shear) {
-  if (mode == ContactMode::open || !(stiffness > 0.0))
+/// 3.17-3.18), and ks s² / 2 of a locked shear spring (eq. 3.25-3.26; ks = p but for a
+/// joint's own stiffnesses).
+double energy_of(ContactMode mode, const ContactPoint& p, double gap, double shear) {
+  if (mode == ContactMode::open || !(p.stiffness > 0.0))
     return 0.0;
-  double energy = 0.5 * stiffness * gap * gap;
+  double energy = 0.5 * p.stiffness * gap * gap;
   if (mode == ContactMode::lock)
-    energy += 0.5 * stiffness * shear * shear;
+    energy += 0.5 * shear_stiffness(p) * shear * shear;
   return energy;
 }
 
@@ -47,13 +48,13 @@ ContactSystem::SpringWork ContactSystem::spring_work(const Model& model,
     const Kinematics& k = cached_kinematics(model, p, i);
     const double g1 = k.gap(raw);
     const double s1 = k.s0 + k.tangential(raw);
-    const double start = energy_of(before, p.stiffness, k.g0, k.s0);
-    const double end = energy_of(p.mode, p.stiffness, g1, s1);
+    const double start = energy_of(before, p, k.g0, k.s0);
+    const double end = energy_of(p.mode, p, g1, s1);
     double done = tension > 0.0 ? tension * (g1 - k.g0) : 0.0;
     if (p.mode != ContactMode::open)
       done += p.stiffness * g1 * (g1 - k.g0);
     if (p.mode == ContactMode::lock)
-      done += p.stiffness * s1 * (s1 - k.s0);
+      done += shear_stiffness(p) * s1 * (s1 - k.s0);
     const double lost = done + start - end;
     work.start += start;
     work.end += end;

@@ -64,7 +64,8 @@ constexpr std::string_view material_keys[] = {"model",
                                               "initial_angular_velocity",
                                               "initial_stress",
                                               "exact_rotation"};
-constexpr std::string_view joint_keys[] = {"friction_angle", "cohesion", "tensile_strength"};
+constexpr std::string_view joint_keys[] = {"friction_angle", "cohesion", "tensile_strength",
+                                           "normal_stiffness", "shear_stiffness"};
 constexpr std::string_view boundary_keys[] = {"curve", "point", "fix", "method"};
 constexpr std::string_view load_keys[] = {
     "gravity",           "point", "force", "curve", "traction", "pressure", "water_level",
@@ -615,6 +616,17 @@ JointProperties read_joint_properties(const TableView& view) {
   if (!(properties.tensile_strength >= 0.0))
     view.fail_range("tensile_strength", properties.tensile_strength,
                     "the tensile strength must be >= 0 (Pa)");
+  // A joint's own stiffness, instead of the penalty for its edge-to-edge contacts.
+  for (const auto& [key, value] : {std::pair{"normal_stiffness", &properties.normal_stiffness},
+                                   std::pair{"shear_stiffness", &properties.shear_stiffness}}) {
+    if (const std::optional<double> given = view.number(key, "Pa/m", "1.0e10")) {
+      if (!(*given > 0.0))
+        view.fail_range(key, *given,
+                        "a joint's stiffness must be > 0 (Pa/m); leave the key out for the "
+                        "penalty springs of [analysis]");
+      *value = *given;
+    }
+  }
   return properties;
 }
 

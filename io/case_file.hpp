@@ -104,6 +104,10 @@ struct JointProperties {
   double cohesion = 0.0;
   /// Pa, >= 0.
   double tensile_strength = 0.0;
+  /// `normal_stiffness` and `shear_stiffness`: the joint's own spring stiffness per unit
+  /// length of contact, Pa/m, > 0 when given; 0 when absent (the penalty).
+  double normal_stiffness = 0.0;
+  double shear_stiffness = 0.0;
 };
 
 /// `[joints.NAME]`: one Physical Curve that cuts the material.

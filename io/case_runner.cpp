@@ -766,11 +766,13 @@ void CaseAnalysis::add_unused_curve_warnings() {
 
 std::unique_ptr<ContactSystem> CaseAnalysis::make_contact_system(double penalty) const {
   // Each boundary edge takes the properties of its joint ([joints.NAME]) or [contact]; an
-  // edge pair takes the weaker of its two sides. A joint with cohesion or tensile strength
-  // is intact (bonded) until its strength is exceeded.
+  // edge pair takes the weaker of its two sides (and the softer of the joints' own
+  // stiffnesses). A joint with cohesion or tensile strength is intact (bonded) until its
+  // strength is exceeded.
   constexpr double degrees = 3.14159265358979323846 / 180.0;
   const auto strength_of = [&](const JointProperties& p) {
-    return JointStrength{p.friction_angle_degrees * degrees, p.cohesion, p.tensile_strength};
+    return JointStrength{p.friction_angle_degrees * degrees, p.cohesion, p.tensile_strength,
+                         p.normal_stiffness, p.shear_stiffness};
   };
   std::map<int, const JointProperties*> joint_of_curve;
   for (std::size_t j = 0; j < geometry_.joint_curves.size(); ++j)

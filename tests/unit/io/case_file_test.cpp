@@ -173,6 +173,8 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_DOUBLE_EQ(spec.contact.friction_angle_degrees, 0.0);
   EXPECT_DOUBLE_EQ(spec.contact.cohesion, 0.0);
   EXPECT_DOUBLE_EQ(spec.contact.tensile_strength, 0.0);
+  EXPECT_EQ(spec.contact.normal_stiffness, 0.0); // absent: the penalty
+  EXPECT_EQ(spec.contact.shear_stiffness, 0.0);
   EXPECT_TRUE(spec.boundaries.empty());
   EXPECT_TRUE(spec.loads.empty());
   EXPECT_TRUE(spec.monitors.empty());
@@ -337,6 +339,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "plane = \"stress\"\nthickness = 0.3\ninitial_angular_velocity = 0.1\n"
       "exact_rotation = true\n"
       "[contact]\nfriction_angle = 25\ncohesion = 1e4\ntensile_strength = 5e3\n"
+      "normal_stiffness = 2e10\nshear_stiffness = 5e9\n"
       "[analysis]\nkind = \"dynamic\"\nsteps = 50\npenalty_stiffness = 1e12\nopen_close_max = 20\n"
       "solver = \"pcg\"\npcg_tolerance = 1e-8\nmax_step_cuts = 0\nend_time = 2.5\n"
       "max_step_displacement = 0.5\n"
@@ -360,6 +363,8 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_DOUBLE_EQ(spec.contact.friction_angle_degrees, 25.0);
   EXPECT_DOUBLE_EQ(spec.contact.cohesion, 1e4);
   EXPECT_DOUBLE_EQ(spec.contact.tensile_strength, 5e3);
+  EXPECT_DOUBLE_EQ(spec.contact.normal_stiffness, 2e10);
+  EXPECT_DOUBLE_EQ(spec.contact.shear_stiffness, 5e9);
   EXPECT_DOUBLE_EQ(spec.analysis.penalty_stiffness.value(), 1e12);
   EXPECT_EQ(spec.analysis.open_close_max.value_or(0), 20);
   EXPECT_EQ(spec.analysis.solver, LinearSolverKind::pcg);
@@ -576,6 +581,8 @@ std::vector<BadCase> bad_cases() {
        "and < 90"},
       {"NegativeContactCohesion", minimal + "[contact]\ncohesion = -1 # <-\n",
        "[contact] cohesion = -1 is out of range"},
+      {"ZeroContactNormalStiffness", minimal + "[contact]\nnormal_stiffness = 0 # <-\n",
+       "[contact] normal_stiffness = 0 is out of range; a joint's stiffness must be > 0 (Pa/m)"},
       {"NegativeTensileStrength", minimal + "[joints.j]\ntensile_strength = -1e3 # <-\n",
        "tensile strength must be >= 0"},
       {"ZeroSteps", head + rock + "[analysis]\nsteps = 0 # <-\n",
