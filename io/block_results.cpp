@@ -196,7 +196,7 @@ BlockTracker::motions(const Model& model, const Eigen::VectorXd& velocity, bool 
   std::vector<double> spin(n_blocks, 0.0);    // int x x v dA
   std::vector<double> inertia(n_blocks, 0.0); // int |x|^2 dA
   for_each_loop(model, initial_points_,
-                [&](int e, std::span<const Point2> loop, std::size_t first, double sign) {
+                [&](int e, std::span<const Point2> loop, std::size_t /*first*/, double sign) {
                   const auto b =
                       static_cast<std::size_t>(model.elements[static_cast<std::size_t>(e)].block);
                   const Point2& c = last_[b].centroid;
@@ -207,7 +207,6 @@ BlockTracker::motions(const Model& model, const Eigen::VectorXd& velocity, bool 
                   std::vector<Point2> v(loop.size());
                   for (std::size_t k = 0; k < loop.size(); ++k)
                     v[k] = model.displacement(e, loop[k], velocity);
-                  static_cast<void>(first);
                   for (std::size_t k = 1; k + 1 < loop.size(); ++k) {
                     const std::array<Point2, 3> x{loop[0] - c, loop[k] - c, loop[k + 1] - c};
                     const std::array<Point2, 3> vk{v[0], v[k], v[k + 1]};

@@ -56,7 +56,8 @@ public:
   BlockTracker(const Model& model, std::vector<Point2> initial_points);
 
   /// After each step of length @p dt: the fit of every block now, and the rate of its
-  /// centroid and rotation over the step (what moved_rates() gives). Read only.
+  /// centroid and rotation over the step (what motions() gives with step_rates). Reads
+  /// @p model only.
   void update(const Model& model, double dt);
 
   /// The motion of every block now (at the last update(); at the start before any).
@@ -79,7 +80,7 @@ public:
   void restore(const Eigen::VectorXd& state);
 
 private:
-  /// Centroid and rotation fit of one block now; the rotation continued from @p last.
+  /// Centroid and rotation fit of one block, the rotation continued from the last update's.
   struct Fit {
     Point2 centroid = Point2::Zero();
     double rotation = 0.0;
@@ -87,10 +88,8 @@ private:
   [[nodiscard]] std::vector<Fit> fit(const Model& model) const;
 
   std::vector<Point2> initial_points_;
-  /// Per block: first point index of each element (step_points() order), the reference
-  /// area and centroid, and a point of the block at the start (the origin of its sums, for
-  /// rounding far from the global origin).
-  std::vector<std::size_t> element_first_point_;
+  /// Per block: the area and centroid at the start, and a point of the block at the start
+  /// (the origin of its sums, for rounding far from the global origin).
   std::vector<double> area_;
   std::vector<Point2> initial_centroid_;
   std::vector<Point2> origin_;
