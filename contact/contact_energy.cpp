@@ -13,16 +13,17 @@ namespace {
 
 /// Energy of a point's springs with gap @p gap and shear displacement @p shear in mode
 /// @p mode: p g² / 2 of a closed normal spring, pressed, or pulled when @p bonded (Shi eq.
-/// 3.17-3.18), and p s² / 2 of a locked shear spring (eq. 3.25-3.26). An unbonded closed
-/// point where the faces are apart holds nothing: it carries no tension, and springs that
-/// the lift-off moves onto a part of the overlap still open at the start of the step (it
-/// presses at the end) did not exist there then, nor did the shear their anchors carry.
-double energy_of(ContactMode mode, double stiffness, double gap, double shear, bool bonded) {
-  if (mode == ContactMode::open || !(stiffness > 0.0) || (!bonded && gap > 0.0))
+/// 3.17-3.18), and ks s² / 2 of a locked shear spring (eq. 3.25-3.26; ks = p but for a
+/// joint's own stiffnesses). An unbonded closed point where the faces are apart holds
+/// nothing: it carries no tension, and springs that the lift-off moves onto a part of the
+/// overlap still open at the start of the step (it presses at the end) did not exist there
+/// then, nor did the shear their anchors carry.
+double energy_of(ContactMode mode, const ContactPoint& p, double gap, double shear, bool bonded) {
+  if (mode == ContactMode::open || !(p.stiffness > 0.0) || (!bonded && gap > 0.0))
     return 0.0;
-  double energy = 0.5 * stiffness * gap * gap;
+  double energy = 0.5 * p.stiffness * gap * gap;
   if (mode == ContactMode::lock)
-    energy += 0.5 * stiffness * shear * shear;
+    energy += 0.5 * shear_stiffness(p) * shear * shear;
   return energy;
 }
 
@@ -59,13 +60,13 @@ ContactSystem::SpringWork ContactSystem::spring_work(const Model& model,
     const bool anchored_anew = s.anchor != p.anchor && s.slave == p.slave && s.master == p.master &&
                                s.stiffness == p.stiffness;
     const double s0 = anchored_anew ? start_gap_and_shear(s).second : k.s0;
-    const double start = energy_of(before, p.stiffness, k.g0, s0, s.bonded);
-    const double end = energy_of(p.mode, p.stiffness, g1, s1, p.bonded);
+    const double start = energy_of(before, p, k.g0, s0, s.bonded);
+    const double end = energy_of(p.mode, p, g1, s1, p.bonded);
     double done = tension > 0.0 ? tension * (g1 - k.g0) : 0.0;
     if (p.mode != ContactMode::open)
       done += p.stiffness * g1 * (g1 - k.g0);
     if (p.mode == ContactMode::lock)
-      done += p.stiffness * s1 * (s1 - k.s0);
+      done += shear_stiffness(p) * s1 * (s1 - k.s0);
     const double lost = done + start - end;
     work.start += start;
     work.end += end;

@@ -102,7 +102,7 @@ ContactSystem::Resultants ContactSystem::resultants(const Model& model,
     const ContactPoint& p = points_[at(g.first + q)];
     r.stiffness += p.stiffness;
     r.normal -= p.stiffness * measure[at(q)].gap;
-    r.shear += p.stiffness * measure[at(q)].shear;
+    r.shear += shear_stiffness(p) * measure[at(q)].shear;
     r.motion += p.stiffness * measure[at(q)].ds;
     r.gap += p.stiffness * measure[at(q)].gap;
     if (p.bonded) {
@@ -159,7 +159,7 @@ void ContactSystem::pressing(const Model& model,
                         [&](double s) { return std::abs(s) <= rounding_; });
     if (r.pressed.found) {
       const double alpha =
-          options_.penalty / options_.spring_length * std::abs(g.t_next - g.t_first);
+          edge_stiffness(points_[at(g.first)].strength) * std::abs(g.t_next - g.t_first);
       r.pulling = alpha * profile.outside(g.from, g.to, r.pressed.from, r.pressed.to);
       r.pushing = alpha * profile.outside(r.pressed.from, r.pressed.to, g.from, g.to);
       r.spring_noise = alpha * rounding_ * (g.hi - g.lo);
@@ -193,7 +193,8 @@ ContactSystem::ModeStep ContactSystem::decide_mode(const Group& g, const Resulta
       // Shi 8.2: open -> slide when the shear the lock would take, the step's tangential
       // motion against a spring of the same stiffness, beats friction on the normal force
       // the penetration gives; open -> lock otherwise.
-      const double trial_shear = std::abs(r.motion) * r.stiffness;
+      const double trial_shear =
+          std::abs(r.motion) * r.stiffness * points_[at(g.first)].shear_ratio;
       const double trial_limit =
           law_->shear_limit(std::max(0.0, r.deepest) * r.stiffness, r.friction, r.cohesion);
       if (trial_shear > trial_limit && !hold_shear_) {
@@ -331,7 +332,7 @@ void ContactSystem::set_forces(const Group& g,
     // An open bond pulls with its tensile strength (contribution()): a tensile normal force.
     const double pull = law_->bond_tension(p);
     p.normal_force = closed(after) ? now * share : pull > 0.0 ? -pull : 0.0;
-    p.shear_force = after == ContactMode::lock ? p.stiffness * measure[at(q)].shear
+    p.shear_force = after == ContactMode::lock ? shear_stiffness(p) * measure[at(q)].shear
                     : after == ContactMode::slide
                         ? sign * (std::max(0.0, now) * r.friction * share + law_->bond_cohesion(p))
                         : 0.0;

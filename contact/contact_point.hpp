@@ -9,11 +9,17 @@
 
 namespace nmm {
 
-/// Mohr-Coulomb strength of a joint or a contact surface.
+/// Mohr-Coulomb strength of a joint or a contact surface, and its own spring stiffness.
 struct JointStrength {
   double friction_angle = 0.0;   ///< radians, in [0, pi/2)
   double cohesion = 0.0;         ///< Pa
   double tensile_strength = 0.0; ///< Pa
+  /// The joint's normal and shear stiffness per unit length of contact (`normal_stiffness`,
+  /// `shear_stiffness`), Pa/m; 0: the penalty (ContactOptions). Edge-to-edge contacts take
+  /// them per unit of the length they represent, as a Goodman joint element of that
+  /// stiffness (Riahi et al., eq. 21 and 43); angle contacts keep the penalty.
+  double normal_stiffness = 0.0;
+  double shear_stiffness = 0.0;
 };
 
 /// The three contact modes of Shi's open-close iteration (1997, 8.2).
@@ -30,7 +36,9 @@ struct ContactPoint {
   double u = 0.0;
   int master = -1;        ///< master edge (entrance line)
   double length = 0.0;    ///< tributary length for strengths and integrated stiffness, m
-  double stiffness = 0.0; ///< normal and shear spring stiffness, N/m
+  double stiffness = 0.0; ///< normal spring stiffness, N/m
+  /// Shear over normal spring stiffness: 1 but where a joint's own stiffnesses differ.
+  double shear_ratio = 1.0;
   JointStrength strength; ///< of the pair (the weaker of the two sides)
   bool bonded = false;    ///< intact joint: holds tension and cohesion until it breaks
   ContactMode mode = ContactMode::open;
@@ -66,5 +74,10 @@ struct ContactPoint {
   /// "Augmented Lagrange").
   double shift = 0.0;
 };
+
+/// The shear spring stiffness of @p p, N/m.
+[[nodiscard]] inline double shear_stiffness(const ContactPoint& p) noexcept {
+  return p.stiffness * p.shear_ratio;
+}
 
 } // namespace nmm

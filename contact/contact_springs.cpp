@@ -60,8 +60,8 @@ bool ContactSystem::contribution(const Model& model,
   if (p.mode == ContactMode::lock) {
     // Shear spring (eq. 3.25-3.26) anchored at P0.
     if (stiffness != nullptr)
-      add_outer(*stiffness, p.stiffness, hs, upper);
-    load -= p.stiffness * k.s0 * hs;
+      add_outer(*stiffness, shear_stiffness(p), hs, upper);
+    load -= shear_stiffness(p) * k.s0 * hs;
   } else if (friction_coupled(p)) {
     return true; // its friction is in the solve: friction_coupling()
   } else if (const double friction = law_->friction_force(p); friction != 0.0) {

@@ -269,12 +269,15 @@ bool ContactSystem::add_edge_points(const ContactCandidate& c,
   g.hi = std::clamp(std::max(u1, u2), 0.0, 1.0);
   p.strength = law_->contact_strength(edge_strength_[at(c.slave)], edge_strength_[at(c.master)]);
   p.bonded = edge_bonded_[at(c.slave)] != 0 && edge_bonded_[at(c.master)] != 0;
+  p.shear_ratio = edge_shear_ratio(p.strength);
   // The pre-compression and pre-shear of the in-situ traction (as for an angle point): the
-  // springs' stiffness per unit length is penalty / spring_length, the same at every point.
+  // springs' stiffness per unit length is edge_stiffness(), the same at every point.
   const Point2 traction = in_situ_traction(c.slave, c.slave, c.master);
-  const double compliance = options_.spring_length / options_.penalty;
+  const double compliance = p.strength.normal_stiffness > 0.0
+                                ? 1.0 / p.strength.normal_stiffness
+                                : options_.spring_length / options_.penalty;
   p.shift = p.bonded ? traction.x() * compliance : std::max(0.0, traction.x() * compliance);
-  g.in_situ_shear = traction.y() * compliance;
+  g.in_situ_shear = traction.y() * compliance / p.shear_ratio;
   g.count = gauss_;
   for (int q = 0; q < gauss_; ++q) {
     points_.push_back(p);

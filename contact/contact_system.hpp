@@ -698,6 +698,21 @@ private:
   FrictionHolds holds_; ///< holds()
   bool dynamic_ = false;
   bool coupled_friction_ = false; ///< set_coupled_friction()
+  /// The normal spring stiffness per unit length of an edge-to-edge contact of @p strength
+  /// (its points get it times their length), N/m per m: the joint's own normal_stiffness,
+  /// else penalty / spring_length.
+  [[nodiscard]] double edge_stiffness(const JointStrength& strength) const noexcept {
+    return strength.normal_stiffness > 0.0 ? strength.normal_stiffness
+                                           : options_.penalty / options_.spring_length;
+  }
+  /// Shear over normal stiffness of such a contact: 1 without a joint's own stiffness.
+  [[nodiscard]] double edge_shear_ratio(const JointStrength& strength) const noexcept {
+    if (!(strength.normal_stiffness > 0.0) && !(strength.shear_stiffness > 0.0))
+      return 1.0;
+    const double shear = strength.shear_stiffness > 0.0 ? strength.shear_stiffness
+                                                        : options_.penalty / options_.spring_length;
+    return shear / edge_stiffness(strength);
+  }
   /// The stiffness of group @p g's springs: the sum over its points, in order (the shares
   /// of its normal force and friction are by it).
   [[nodiscard]] double group_stiffness(const Group& g) const;

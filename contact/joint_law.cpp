@@ -29,8 +29,14 @@ bool MohrCoulombJoint::is_bonded(std::size_t loop, std::size_t edge) const {
 
 JointStrength MohrCoulombJoint::contact_strength(const JointStrength& a,
                                                  const JointStrength& b) const {
+  // The softer of the stiffnesses given (0: none given, the penalty).
+  const auto softer = [](double x, double y) {
+    return x > 0.0 && y > 0.0 ? std::min(x, y) : std::max(x, y);
+  };
   return {std::min(a.friction_angle, b.friction_angle), std::min(a.cohesion, b.cohesion),
-          std::min(a.tensile_strength, b.tensile_strength)};
+          std::min(a.tensile_strength, b.tensile_strength),
+          softer(a.normal_stiffness, b.normal_stiffness),
+          softer(a.shear_stiffness, b.shear_stiffness)};
 }
 
 double MohrCoulombJoint::friction_coefficient(const ContactPoint& p) const {

@@ -73,7 +73,7 @@ void ContactSystem::place(Group& g,
   // Lengths along the master (the projection of the part), so that a pair of parallel
   // edges integrates exactly as one joint element (Goodman).
   const double span = std::abs(g.t_next - g.t_first) * (to - from);
-  const double alpha = options_.penalty / options_.spring_length;
+  const double alpha = edge_stiffness(lead.strength);
   for (int q = 0; q < g.count; ++q) {
     ContactPoint& p = points_[at(g.first + q)];
     const double xi = gauss_ == 2 ? xi2[at(q)] : xi3[at(q)];

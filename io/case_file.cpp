@@ -64,7 +64,8 @@ constexpr std::string_view material_keys[] = {"model",
                                               "initial_angular_velocity",
                                               "initial_stress",
                                               "exact_rotation"};
-constexpr std::string_view joint_keys[] = {"friction_angle", "cohesion", "tensile_strength"};
+constexpr std::string_view joint_keys[] = {"friction_angle", "cohesion", "tensile_strength",
+                                           "normal_stiffness", "shear_stiffness"};
 constexpr std::string_view boundary_keys[] = {"curve", "point", "fix", "method"};
 constexpr std::string_view load_keys[] = {
     "gravity",           "point", "force", "curve", "traction", "pressure", "water_level",
@@ -86,7 +87,7 @@ constexpr std::string_view analysis_keys[] = {"kind",
                                               "energy_error_limit",
                                               "velocity_ratio"};
 constexpr std::string_view monitor_keys[] = {"name", "point"};
-constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every"};
+constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every", "moved_threshold"};
 
 constexpr std::string_view top_level_name = "the top level";
 
@@ -615,6 +616,17 @@ JointProperties read_joint_properties(const TableView& view) {
   if (!(properties.tensile_strength >= 0.0))
     view.fail_range("tensile_strength", properties.tensile_strength,
                     "the tensile strength must be >= 0 (Pa)");
+  // A joint's own stiffness, instead of the penalty for its edge-to-edge contacts.
+  for (const auto& [key, value] : {std::pair{"normal_stiffness", &properties.normal_stiffness},
+                                   std::pair{"shear_stiffness", &properties.shear_stiffness}}) {
+    if (const std::optional<double> given = view.number(key, "Pa/m", "1.0e10")) {
+      if (!(*given > 0.0))
+        view.fail_range(key, *given,
+                        "a joint's stiffness must be > 0 (Pa/m); leave the key out for the "
+                        "penalty springs of [analysis]");
+      *value = *given;
+    }
+  }
   return properties;
 }
 
@@ -941,6 +953,10 @@ OutputSpec read_output(Context& context, const toml::table& root, const std::str
   }
   spec.every = view.small_integer_or("every", 1, 1, 100'000'000, "10");
   spec.checkpoint_every = view.small_integer_or("checkpoint_every", 0, 0, 100'000'000, "1000");
+  spec.moved_threshold = view.number("moved_threshold", "m", "0.01");
+  if (spec.moved_threshold && !(*spec.moved_threshold >= 0.0))
+    view.fail_range("moved_threshold", *spec.moved_threshold,
+                    "the displacement beyond which a block counts as moved must be >= 0 (m)");
   return spec;
 }
 

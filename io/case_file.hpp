@@ -104,6 +104,10 @@ struct JointProperties {
   double cohesion = 0.0;
   /// Pa, >= 0.
   double tensile_strength = 0.0;
+  /// `normal_stiffness` and `shear_stiffness`: the joint's own spring stiffness per unit
+  /// length of contact, Pa/m, > 0 when given; 0 when absent (the penalty).
+  double normal_stiffness = 0.0;
+  double shear_stiffness = 0.0;
 };
 
 /// `[joints.NAME]`: one Physical Curve that cuts the material.
@@ -214,6 +218,9 @@ struct OutputSpec {
   int every = 1;
   /// Write a restart checkpoint every this many steps, >= 0; 0 = only when the run stops.
   int checkpoint_every = 0;
+  /// `moved_threshold`: summary.json's `moved_blocks` lists the blocks whose centroid moved
+  /// farther than this, >= 0, m; absent: no `moved_blocks` key.
+  std::optional<double> moved_threshold;
 };
 
 /// The whole case file, every default applied (see docs/case-file.md).

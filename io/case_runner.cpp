@@ -2,6 +2,7 @@
 #include "io/case_runner.hpp"
 
 #include "io/atomic_file.hpp"
+#include "io/block_results.hpp"
 #include "io/checkpoint.hpp"
 #include "io/cover_warnings.hpp"
 #include "io/gmsh_reader.hpp"
@@ -765,11 +766,13 @@ void CaseAnalysis::add_unused_curve_warnings() {
 
 std::unique_ptr<ContactSystem> CaseAnalysis::make_contact_system(double penalty) const {
   // Each boundary edge takes the properties of its joint ([joints.NAME]) or [contact]; an
-  // edge pair takes the weaker of its two sides. A joint with cohesion or tensile strength
-  // is intact (bonded) until its strength is exceeded.
+  // edge pair takes the weaker of its two sides (and the softer of the joints' own
+  // stiffnesses). A joint with cohesion or tensile strength is intact (bonded) until its
+  // strength is exceeded.
   constexpr double degrees = 3.14159265358979323846 / 180.0;
   const auto strength_of = [&](const JointProperties& p) {
-    return JointStrength{p.friction_angle_degrees * degrees, p.cohesion, p.tensile_strength};
+    return JointStrength{p.friction_angle_degrees * degrees, p.cohesion, p.tensile_strength,
+                         p.normal_stiffness, p.shear_stiffness};
   };
   std::map<int, const JointProperties*> joint_of_curve;
   for (std::size_t j = 0; j < geometry_.joint_curves.size(); ++j)
@@ -897,7 +900,8 @@ private:
 /// Refuses a folder in @p dir under the name of a file that run_case() writes: the rename
 /// of the finished file onto it would fail only at the end of the run.
 void refuse_folders_named_like_outputs(const fs::path& dir) {
-  for (const char* name : {"summary.json", "history.csv", "case.pvd", checkpoint_file_name}) {
+  for (const char* name :
+       {"summary.json", "history.csv", blocks_file_name, "case.pvd", checkpoint_file_name}) {
     const fs::path file = dir / name;
     std::error_code error;
     if (fs::is_directory(file, error)) {
@@ -985,6 +989,14 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   std::vector<std::string> restart_warnings;
   std::optional<CheckpointRun> restored;
   std::optional<HistoryWriter> history;
+  // blocks.csv (docs/output.md): each block's motion and state at every output step.
+  std::optional<BlockOutput> blocks;
+  std::vector<std::string> region_names;
+  for (const int material : analysis.geometry().region_material)
+    region_names.push_back(material >= 0 ? spec.materials[static_cast<std::size_t>(material)].name
+                                         : std::string());
+  const bool step_rates = spec.analysis.kind == AnalysisKind::quasi_static;
+  const double speed_tolerance = block_speed_tolerance * stepper.model_size();
   std::optional<OutputLock> lock;
   if (options.restart) {
     // Everything is checked before anything in the folder changes (but the lock file).
@@ -1003,6 +1015,9 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
           std::to_string(spec.monitors.size()) + "; run the case from the start without --restart");
     analysis.restore_monitor_starts(restored->monitor_starts);
     history.emplace(dir / "history.csv", monitor_names, restored->history_bytes);
+    blocks.emplace(model, restored->initial_points, region_names, dir / blocks_file_name,
+                   restored->blocks_bytes, step_rates, speed_tolerance);
+    blocks->restore(restored->block_motion);
     remove_old_output(dir, restored->step);
     if (options.on_warning) {
       for (const std::string& w : restart_warnings)
@@ -1047,6 +1062,9 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     // Stresses are recovered for output (make_step_data) once per step file and nowhere else.
     summary.stress_recoveries = result.output_steps;
     summary.warnings = all_warnings();
+    if (spec.output.moved_threshold)
+      summary.moved_blocks =
+          blocks ? blocks->moved_blocks(*spec.output.moved_threshold) : std::vector<MovedBlock>{};
     summary.monitors.clear();
     const std::vector<MonitorValues> values = analysis.monitor_values();
     for (std::size_t k = 0; k < values.size(); ++k)
@@ -1089,6 +1107,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       }
     }
     initial_points = step_points(model);
+    blocks.emplace(model, initial_points, region_names, dir / blocks_file_name, std::nullopt,
+                   step_rates, speed_tolerance);
   }
   const auto write_checkpoint_now = [&] {
     CheckpointRun run;
@@ -1098,6 +1118,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     run.max_penetration = summary.max_penetration;
     run.wall_seconds = wall_before + options.seconds_before + seconds_since(start);
     run.history_bytes = history->bytes();
+    run.blocks_bytes = blocks->bytes();
+    run.block_motion = blocks->tracker().state();
     run.pvd = pvd.entries();
     run.initial_points = initial_points;
     run.monitor_starts = analysis.monitor_starts();
@@ -1114,6 +1136,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       write_vtp_lines(parts.back(), make_boundary_step_data(model, stepper.time()));
     }
     pvd.add(stepper.time(), parts);
+    blocks->write_step(number, stepper.time(), model, stepper);
     written = number;
     ++result.output_steps;
   };
@@ -1141,6 +1164,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       result.load_work = report.load_work;
       summary.max_penetration = std::max(summary.max_penetration, report.max_penetration);
       history->write_row(report, analysis.monitor_values());
+      blocks->update(model, report.dt);
       // The stepper's warnings as they come (the energy balance's among them), not only in
       // the final list.
       for (; stepper_warnings < stepper.warnings().size(); ++stepper_warnings) {

@@ -25,8 +25,9 @@ namespace fs = std::filesystem;
 // and the last step's accelerations (their first guess); version 7 (2026-11-29),
 // coupled_friction_tries and coupled_friction_iterations; version 8 (2026-12-02), the energy
 // balance's terms (EnergyLedger) and the bonded contacts open at the end of the step (yielded
-// in tension: they start the next step open).
-constexpr std::string_view magic = "nmm checkpoint, version 8\n";
+// in tension: they start the next step open); version 9 (the same day), blocks.csv's size and
+// the block tracker's state.
+constexpr std::string_view magic = "nmm checkpoint, version 9\n";
 constexpr std::int64_t byte_order = 0x0102030405060708;
 
 /// 64-bit FNV-1a: a fingerprint, not a defence against tampering.
@@ -92,6 +93,8 @@ void write_checkpoint(const fs::path& file,
   out.put(run.max_penetration);
   out.put(run.wall_seconds);
   out.put(static_cast<std::int64_t>(run.history_bytes));
+  out.put(static_cast<std::int64_t>(run.blocks_bytes));
+  out.put(run.block_motion);
   out.put_count(run.pvd.size());
   for (const PvdSeries::Entry& entry : run.pvd) {
     out.put(entry.time);
@@ -172,6 +175,8 @@ CheckpointRun read_checkpoint(const fs::path& file,
   run.max_penetration = in.real();
   run.wall_seconds = in.real();
   run.history_bytes = static_cast<std::uintmax_t>(in.integer());
+  run.blocks_bytes = static_cast<std::uintmax_t>(in.integer());
+  run.block_motion = in.vector();
   run.pvd.resize(in.count());
   for (PvdSeries::Entry& entry : run.pvd) {
     entry.time = in.real();

@@ -9,6 +9,8 @@
 #include "mesh/geometry.hpp"
 #include "solver/time_stepper.hpp"
 
+#include <Eigen/Core>
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -27,6 +29,9 @@ struct CheckpointRun {
   double max_penetration = 0.0;     ///< deepest of any step so far, m
   double wall_seconds = 0.0;        ///< of the run so far, s
   std::uintmax_t history_bytes = 0; ///< history.csv's size after the step's row
+  std::uintmax_t blocks_bytes = 0;  ///< blocks.csv's size after the last output step's rows
+  /// What the block tracker carries from step to step (BlockTracker::state()).
+  Eigen::VectorXd block_motion;
   std::vector<PvdSeries::Entry> pvd;
   /// Output points at the start (displacements count from them) and the monitors' starts.
   std::vector<Point2> initial_points;

@@ -19,8 +19,6 @@ namespace nmm {
 
 namespace {
 
-std::string system_reason(int error) { return std::generic_category().message(error); }
-
 /// Appends the members of an object, each line indented by @p indent.
 class JsonObject {
 public:
@@ -89,83 +87,16 @@ std::string history_header(std::span<const std::string> monitor_names) {
 }
 
 HistoryWriter::HistoryWriter(std::filesystem::path file, std::vector<std::string> monitor_names)
-    : file_(std::move(file)), n_monitors_(monitor_names.size()) {
-  descriptor_ = ::open(file_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
-  if (descriptor_ < 0) {
-    throw InputError("cannot write " + file_.string() + ": " + system_reason(errno) +
-                     "; choose a writable output folder with -o DIR or [output] dir");
-  }
-  try {
-    append(history_header(monitor_names) + '\n', "its header");
-  } catch (...) {
-    static_cast<void>(::close(descriptor_)); // no destructor runs for a failed constructor
-    throw;
-  }
-}
+    : n_monitors_(monitor_names.size()),
+      rows_(std::move(file), history_header(monitor_names) + '\n') {}
 
 HistoryWriter::HistoryWriter(std::filesystem::path file,
                              std::vector<std::string> monitor_names,
                              std::uintmax_t keep_bytes)
-    : file_(std::move(file)), n_monitors_(monitor_names.size()), bytes_(keep_bytes) {
-  const std::string header = history_header(monitor_names) + '\n';
-  const auto fail = [&](const std::string& what) {
-    throw InputError("cannot continue " + file_.string() + " after the checkpoint: " + what +
-                     "; run the case from the start without --restart");
-  };
-  std::error_code error;
-  const std::uintmax_t size = std::filesystem::file_size(file_, error);
-  if (error)
-    fail(error.message());
-  if (size < keep_bytes || keep_bytes < header.size())
-    fail("it has " + std::to_string(size) + " bytes, the checkpoint's step ends at byte " +
-         std::to_string(keep_bytes));
-  {
-    std::FILE* in = std::fopen(file_.c_str(), "rb");
-    if (in == nullptr)
-      fail(system_reason(errno));
-    std::string head(header.size(), '\0');
-    const bool read = std::fread(head.data(), 1, head.size(), in) == head.size();
-    char last = 0;
-    const bool end = std::fseek(in, static_cast<long>(keep_bytes) - 1, SEEK_SET) == 0 &&
-                     std::fread(&last, 1, 1, in) == 1;
-    static_cast<void>(std::fclose(in));
-    if (!read || head != header)
-      fail("its header is not that of the case's monitors");
-    if (!end || last != '\n')
-      fail("no row ends at byte " + std::to_string(keep_bytes));
-  }
-  std::filesystem::resize_file(file_, keep_bytes, error);
-  if (error)
-    fail(error.message());
-  descriptor_ = ::open(file_.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-  if (descriptor_ < 0)
-    fail(system_reason(errno));
-}
-
-HistoryWriter::~HistoryWriter() {
-  if (descriptor_ >= 0)
-    static_cast<void>(::close(descriptor_));
-}
-
-void HistoryWriter::append(const std::string& text, const std::string& what) {
-  // One write(2) puts the text on disk (no buffer to flush); a write cut short by a full
-  // disk or a file-size limit is taken back, so the file always ends with a whole row.
-  std::string_view rest = text;
-  while (!rest.empty()) {
-    const ssize_t written = ::write(descriptor_, rest.data(), rest.size());
-    if (written < 0 && errno == EINTR)
-      continue;
-    if (written <= 0) {
-      const int error = written < 0 ? errno : ENOSPC;
-      if (::ftruncate(descriptor_, static_cast<off_t>(bytes_)) != 0) {
-        // The row stays cut; the message below is still the one to give.
-      }
-      throw OutputWriteError(write_failure_message(file_, error, what));
-    }
-    rest.remove_prefix(static_cast<std::size_t>(written));
-  }
-  bytes_ += text.size();
-}
+    : n_monitors_(monitor_names.size()), rows_(std::move(file),
+                                               history_header(monitor_names) + '\n',
+                                               "that of the case's monitors",
+                                               keep_bytes) {}
 
 void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorValues> monitors) {
   NMM_ASSERT(monitors.size() == n_monitors_, "one MonitorValues per monitor");
@@ -195,7 +126,8 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
         report.strain_energy, report.contact_energy, report.dissipated_energy, report.energy_error})
     number(value);
   row += '\n';
-  append(row, "the row of step " + std::to_string(report.step) + " (the rows before it stay)");
+  rows_.append(row,
+               "the row of step " + std::to_string(report.step) + " (the rows before it stay)");
 }
 
 std::string json_string(std::string_view text) {
@@ -334,6 +266,25 @@ std::string summary_json(const RunSummary& s) {
   mesher.seconds("seconds_cut_triangles", s.mesher.seconds_cut_triangles);
   mesher.seconds("seconds_rest", s.mesher.seconds_rest);
   mesher.close();
+  if (s.moved_blocks) {
+    root.key("moved_blocks");
+    out += '[';
+    for (std::size_t k = 0; k < s.moved_blocks->size(); ++k) {
+      const MovedBlock& moved = (*s.moved_blocks)[k];
+      out += k == 0 ? "\n" : ",\n";
+      out.append(static_cast<std::size_t>(root.inner_indent() + 2), ' ');
+      JsonObject block(out, root.inner_indent() + 2);
+      block.integer("block", moved.block);
+      block.string("material", moved.material);
+      block.number("displacement", moved.displacement);
+      block.close();
+    }
+    if (!s.moved_blocks->empty()) {
+      out += '\n';
+      out.append(static_cast<std::size_t>(root.inner_indent()), ' ');
+    }
+    out += ']';
+  }
   root.close();
   out += '\n';
   return out;

@@ -3,12 +3,14 @@
 // "Contracts users see / Output"; docs/output.md shows both with examples).
 #pragma once
 
+#include "io/row_file.hpp"
 #include "mesh/cover_system.hpp"
 #include "solver/linear_solver.hpp"
 #include "solver/time_stepper.hpp"
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -62,31 +64,26 @@ public:
   HistoryWriter(std::filesystem::path file,
                 std::vector<std::string> monitor_names,
                 std::uintmax_t keep_bytes);
-  ~HistoryWriter();
-  HistoryWriter(const HistoryWriter&) = delete;
-  HistoryWriter& operator=(const HistoryWriter&) = delete;
-  HistoryWriter(HistoryWriter&&) = delete;
-  HistoryWriter& operator=(HistoryWriter&&) = delete;
-
   /// Appends the row of one step, whole or not at all.
   /// @pre monitors.size() == the number of monitor names.
   /// @throws OutputWriteError naming the file and the reason ("disk full: ...", "file too
   ///         large: ...") when the write fails; the file then ends with the row before.
   void write_row(const StepReport& report, std::span<const MonitorValues> monitors);
 
-  [[nodiscard]] const std::filesystem::path& file() const noexcept { return file_; }
+  [[nodiscard]] const std::filesystem::path& file() const noexcept { return rows_.file(); }
   /// Size of the file so far: header and every row written, bytes.
-  [[nodiscard]] std::uintmax_t bytes() const noexcept { return bytes_; }
+  [[nodiscard]] std::uintmax_t bytes() const noexcept { return rows_.bytes(); }
 
 private:
-  /// Writes @p text at the end, whole, or truncates the file back to bytes_ and throws
-  /// OutputWriteError (@p what names the text in the message).
-  void append(const std::string& text, const std::string& what);
-
-  std::filesystem::path file_;
   std::size_t n_monitors_ = 0;
-  std::uintmax_t bytes_ = 0;
-  int descriptor_ = -1;
+  RowFile rows_;
+};
+
+/// A block that moved farther than `[output] moved_threshold` (summary.json's moved_blocks).
+struct MovedBlock {
+  int block = 0;             ///< the block id (blocks.csv, the step files' cell array `block`)
+  std::string material;      ///< its material (blocks.csv's `material`)
+  double displacement = 0.0; ///< length of its centroid's displacement since the start, m
 };
 
 /// Everything summary.json holds. The first group of members is DESIGN.md's contract, the
@@ -120,6 +117,9 @@ struct RunSummary {
   /// stresses and directions): once per step file, never in between.
   long stress_recoveries = 0;
   CoverMesherStats mesher;
+  /// The blocks that moved farther than `[output] moved_threshold`, by block id; no value
+  /// (and no key in summary.json) without that key.
+  std::optional<std::vector<MovedBlock>> moved_blocks;
 };
 
 /// summary.json's text: an object with the keys in the order of RunSummary, two-space

@@ -173,6 +173,8 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_DOUBLE_EQ(spec.contact.friction_angle_degrees, 0.0);
   EXPECT_DOUBLE_EQ(spec.contact.cohesion, 0.0);
   EXPECT_DOUBLE_EQ(spec.contact.tensile_strength, 0.0);
+  EXPECT_EQ(spec.contact.normal_stiffness, 0.0); // absent: the penalty
+  EXPECT_EQ(spec.contact.shear_stiffness, 0.0);
   EXPECT_TRUE(spec.boundaries.empty());
   EXPECT_TRUE(spec.loads.empty());
   EXPECT_TRUE(spec.monitors.empty());
@@ -196,6 +198,7 @@ TEST(CaseFile, MinimalCaseGetsEveryDefault) {
   EXPECT_EQ(spec.output.dir, fs::path("out"));
   EXPECT_EQ(spec.output.every, 1);
   EXPECT_EQ(spec.output.checkpoint_every, 0);
+  EXPECT_FALSE(spec.output.moved_threshold.has_value());
   EXPECT_TRUE(spec.warnings.empty());
 }
 
@@ -336,12 +339,13 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
       "plane = \"stress\"\nthickness = 0.3\ninitial_angular_velocity = 0.1\n"
       "exact_rotation = true\n"
       "[contact]\nfriction_angle = 25\ncohesion = 1e4\ntensile_strength = 5e3\n"
+      "normal_stiffness = 2e10\nshear_stiffness = 5e9\n"
       "[analysis]\nkind = \"dynamic\"\nsteps = 50\npenalty_stiffness = 1e12\nopen_close_max = 20\n"
       "solver = \"pcg\"\npcg_tolerance = 1e-8\nmax_step_cuts = 0\nend_time = 2.5\n"
       "max_step_displacement = 0.5\n"
       "initial_equilibrium = true\npenetration_tolerance = 1e-4\n"
       "energy_tolerance = 0.02\nenergy_error_limit = 0.3\nvelocity_ratio = 0.9\n"
-      "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 25\n";
+      "[output]\ndir = \"/tmp/dam\"\nevery = 5\ncheckpoint_every = 25\nmoved_threshold = 0.05\n";
   const CaseSpec spec = parse_case_text(text, "case.toml");
   EXPECT_EQ(spec.title, "Dam on a jointed foundation");
   EXPECT_EQ(spec.cover_mesh.kind, CoverMeshKind::gmsh);
@@ -359,6 +363,8 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_DOUBLE_EQ(spec.contact.friction_angle_degrees, 25.0);
   EXPECT_DOUBLE_EQ(spec.contact.cohesion, 1e4);
   EXPECT_DOUBLE_EQ(spec.contact.tensile_strength, 5e3);
+  EXPECT_DOUBLE_EQ(spec.contact.normal_stiffness, 2e10);
+  EXPECT_DOUBLE_EQ(spec.contact.shear_stiffness, 5e9);
   EXPECT_DOUBLE_EQ(spec.analysis.penalty_stiffness.value(), 1e12);
   EXPECT_EQ(spec.analysis.open_close_max.value_or(0), 20);
   EXPECT_EQ(spec.analysis.solver, LinearSolverKind::pcg);
@@ -374,6 +380,7 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_EQ(spec.output.dir, fs::path("/tmp/dam"));
   EXPECT_EQ(spec.output.every, 5);
   EXPECT_EQ(spec.output.checkpoint_every, 25);
+  EXPECT_DOUBLE_EQ(spec.output.moved_threshold.value(), 0.05);
   // The only material is a VEM one, so the cover function order is unused.
   ASSERT_EQ(spec.warnings.size(), 1u);
   EXPECT_NE(spec.warnings[0].find("order has no effect"), std::string::npos) << spec.warnings[0];
@@ -574,6 +581,8 @@ std::vector<BadCase> bad_cases() {
        "and < 90"},
       {"NegativeContactCohesion", minimal + "[contact]\ncohesion = -1 # <-\n",
        "[contact] cohesion = -1 is out of range"},
+      {"ZeroContactNormalStiffness", minimal + "[contact]\nnormal_stiffness = 0 # <-\n",
+       "[contact] normal_stiffness = 0 is out of range; a joint's stiffness must be > 0 (Pa/m)"},
       {"NegativeTensileStrength", minimal + "[joints.j]\ntensile_strength = -1e3 # <-\n",
        "tensile strength must be >= 0"},
       {"ZeroSteps", head + rock + "[analysis]\nsteps = 0 # <-\n",
@@ -600,6 +609,9 @@ std::vector<BadCase> bad_cases() {
       {"OutputEveryZero", minimal + "[output]\nevery = 0 # <-\n", "[output] every = 0 is out"},
       {"NegativeCheckpoint", minimal + "[output]\ncheckpoint_every = -1 # <-\n",
        "checkpoint_every = -1"},
+      {"NegativeMovedThreshold", minimal + "[output]\nmoved_threshold = -0.1 # <-\n",
+       "[output] moved_threshold = -0.1 is out of range; the displacement beyond which a block "
+       "counts as moved must be >= 0 (m)"},
       {"PcgToleranceTooLoose", minimal + "solver = \"pcg\"\npcg_tolerance = 0.01 # <-\n",
        "pcg_tolerance = 0.01 is out of range"},
       {"PcgToleranceZero", minimal + "pcg_tolerance = 0 # <-\n",
