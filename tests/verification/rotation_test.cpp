@@ -88,8 +88,9 @@ TEST(NmmRotation, FreeBodySpinsARevolutionKeepingItsAreaWithoutStress) {
   // comes back to its shape after every step, and what is left is rounding. The bounds:
   // area 1e-6 a revolution (issue 45; measured 2e-13); stress below 1e-6 of what the run
   // without the key has (4e4 to 5e5 Pa there; rounding of strains of 1e-14 gives 1e-5 Pa,
-  // 1e-10 of it); kinetic energy to 1e-9 and the energy balance (energy_error) to 1e-6, where
-  // rounding over 2000 steps gives about 1e-12 (without the key both miss by 2%).
+  // measured at most 5.4e-5 Pa, 6e-10 of it); kinetic energy to 1e-9 and the energy
+  // balance (energy_error) to 1e-6, where rounding over 2000 steps gives about 1e-12
+  // (without the key both miss by 2%).
   for (const int order : {0, 1}) {
     for (const bool irregular : {false, true}) {
       const Spin linear = spin_one_revolution(order, irregular, false);
