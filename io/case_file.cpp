@@ -685,13 +685,11 @@ MaterialRead read_material(Context& context, const NamedTable& item) {
   spec.initial_stress = view.vector<3>("initial_stress", "Pa: sxx, syy, sxy", "[0.0, 0.0, 0.0]")
                             .value_or(Eigen::Vector3d::Zero());
   spec.exact_rotation = view.boolean_or("exact_rotation", false);
-  if (view.has("exact_rotation") && spec.model != MaterialModel::vem)
+  if (view.has("exact_rotation") && spec.model == MaterialModel::dda)
     view.fail_at_key("exact_rotation",
-                     "[materials." + item.name + "] exact_rotation is a choice of `vem` regions " +
-                         (spec.model == MaterialModel::dda
-                              ? "(DDA blocks always turn by their rotation exactly)"
-                              : "(NMM covers move by their cover functions)") +
-                         "; remove it");
+                     "[materials." + item.name +
+                         "] exact_rotation is a choice of `nmm` and `vem` regions (DDA blocks "
+                         "always turn by their rotation exactly); remove it");
   return read;
 }
 

@@ -91,8 +91,8 @@ struct MaterialSpec {
   double initial_angular_velocity = 0.0;
   /// Initial stress (Pa) as (sxx, syy, sxy); tension positive.
   Eigen::Vector3d initial_stress = Eigen::Vector3d::Zero();
-  /// `exact_rotation`: a `vem` region's blocks turn by each step's rotation exactly
-  /// (ElasticMaterial::exact_rotation). Only `vem` regions take it.
+  /// `exact_rotation`: an `nmm` or `vem` region's blocks turn by each step's rotation exactly
+  /// (ElasticMaterial::exact_rotation). `dda` regions do not take it (they always do).
   bool exact_rotation = false;
 };
 

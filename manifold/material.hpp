@@ -22,10 +22,10 @@ struct ElasticMaterial {
   double thickness = 1.0; ///< m; plane stress only (plane strain is per metre)
   /// Stress at the start of the analysis (sxx, syy, sxy), Pa, e.g. an in-situ stress.
   Eigen::Vector3d initial_stress = Eigen::Vector3d::Zero();
-  /// VEM blocks only: turn each block's geometry and velocities by the step's rotation
-  /// exactly (Model::turn_exactly), as DDA blocks always do, instead of moving the vertices
-  /// by their linear displacement (which keeps a contact's penetration in the equations
-  /// that of the moved geometry, but makes a spinning block grow). Off by default.
+  /// NMM and VEM blocks: turn each block's geometry and velocities by the step's rotation
+  /// exactly (Model::turn_exactly), as DDA blocks always do, instead of moving the covers or
+  /// vertices by their linear displacement (which keeps a contact's penetration in the
+  /// equations that of the moved geometry, but makes a spinning block grow). Off by default.
   bool exact_rotation = false;
 
   /// The factor every area integral is multiplied by: thickness for plane stress, 1 m for

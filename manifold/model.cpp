@@ -380,42 +380,6 @@ void Model::accumulate_stress(const Eigen::VectorXd& raw) {
   }
 }
 
-void Model::turn_exactly(Eigen::VectorXd& raw, Eigen::VectorXd& velocity) const {
-  Eigen::VectorXd values;
-  for (int e = 0; e < n_elements(); ++e) {
-    const ModelElement& element = elements[at(e)];
-    if (element.kind != ElementKind::vem || !material_of(e).exact_rotation)
-      continue;
-    const ElementShape s = shape(e);
-    const VemShape& vem = *s.vem();
-    element_values(e, raw, values);
-    const double r0 = vem.rotation({values.data(), static_cast<std::size_t>(values.size())});
-    if (r0 == 0.0)
-      continue;
-    const Point2 centre = centroid(element.polygons);
-    // R(r0) - I - r0 J, J = [[0, -1], [1, 0]] the quarter turn: second order in r0.
-    const Eigen::Matrix2d turn = Eigen::Rotation2Dd(r0).toRotationMatrix();
-    Eigen::Matrix2d rest = turn - Eigen::Matrix2d::Identity();
-    rest(0, 1) += r0;
-    rest(1, 0) -= r0;
-    // The centroid's velocity: that of the projection, whose mean over the block is its value
-    // at the centroid (the block's momentum over its mass: (I - P_u) has no resultant).
-    element_values(e, velocity, values);
-    const Point2 centre_velocity =
-        vem.displacement_at(centre, {values.data(), static_cast<std::size_t>(values.size())});
-    for (int k = 0; k < vem.n_vertices(); ++k) {
-      const auto u = static_cast<Eigen::Index>(element.dofs[at(2 * k)]);
-      const auto v = static_cast<Eigen::Index>(element.dofs[at(2 * k + 1)]);
-      const Point2 step = rest * (vem.vertices()[at(k)] - centre);
-      raw(u) += step.x();
-      raw(v) += step.y();
-      const Point2 relative = turn * (Point2(velocity(u), velocity(v)) - centre_velocity);
-      velocity(u) = centre_velocity.x() + relative.x();
-      velocity(v) = centre_velocity.y() + relative.y();
-    }
-  }
-}
-
 void Model::move(const Eigen::VectorXd& raw, std::vector<MaterialPoint>& points) {
   NMM_ASSERT(raw.size() == n_dofs(), "wrong size of the displacement vector");
   // Everything is evaluated with the shapes of the start of the step, so covers move last.

@@ -153,8 +153,12 @@ public:
   /// eta_E (I - P_u)^T (I - P_u) d. Call before move().
   void accumulate_stress(const Eigen::VectorXd& raw);
 
-  /// The exact rotation of the VEM blocks whose material has `exact_rotation`
-  /// (docs/formulation.md, "VEM block: exact rotation"). Each such block's step turns it by
+  /// The exact rotation of the VEM and NMM blocks whose material has `exact_rotation`
+  /// (docs/formulation.md, "VEM block: exact rotation", "NMM blocks: exact rotation").
+  /// An NMM block (any of whose elements has such a material) turns by the mass-weighted
+  /// mean rotation r of its elements about its centre of mass, each cover function getting
+  /// the affine (R(r) - I - r J)(x - c), its velocity turned with it (exact_rotation.cpp).
+  /// Each such VEM block's step turns it by
   /// r0 (its projected rotation, VemShape::rotation) about its centroid c only to first
   /// order, r0 J (x - c); this adds the rest, (R(r0) - I - r0 J)(x_i - c), to each vertex's
   /// step displacement in @p raw, and turns each vertex velocity relative to the centroid's

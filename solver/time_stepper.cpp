@@ -35,7 +35,27 @@ struct TimeStepper::Impl {
   EnergyLedger ledger;          ///< of the energy balance
   /// Solver counters of the run before a restart.
   SolverCounters restored_counters;
+  /// The order-1 dependency fixes are chosen again after every step (rechosen_dependencies()).
+  bool rechoose_dependencies = false;
 };
+
+namespace {
+
+/// Whether the model's order-1 dependency fixes must follow the geometry: they fix gradient
+/// unknowns of the global axes, chosen for the geometry they were chosen at; a block turned
+/// exactly (exact_rotation) through a large angle can come to where they no longer pin its
+/// flexes (a spinning order-1 plate's step matrix turned singular at 0.7 of a revolution).
+bool rechosen_dependencies(const Model& model) {
+  if (model.order == 0)
+    return false;
+  for (int e = 0; e < model.n_elements(); ++e) {
+    if (model.elements[at(e)].kind == ElementKind::nmm && model.material_of(e).exact_rotation)
+      return true;
+  }
+  return false;
+}
+
+} // namespace
 
 TimeStepper::TimeStepper(Model& model,
                          Scene scene,
@@ -92,6 +112,7 @@ TimeStepper::TimeStepper(Model& model,
     }
   }
   impl_->system.dependencies = model_.dependency_relations();
+  impl_->rechoose_dependencies = rechosen_dependencies(model_);
 }
 
 TimeStepper::~TimeStepper() = default;
@@ -301,6 +322,8 @@ void TimeStepper::commit_step(const StepKind& kind,
   model_.accumulate_stress(raw);
   ++counters_.stress_updates;
   update_geometry(model_, scene_, raw, velocity_, time_ + dt);
+  if (impl_->rechoose_dependencies)
+    impl_->system.dependencies = model_.dependency_relations();
   if (!kind.equilibrium) {
     time_ += dt;
     ++step_;
@@ -397,6 +420,8 @@ void TimeStepper::save_state(StateWriter& out) const {
 void TimeStepper::load_state(StateReader& in) {
   NMM_ASSERT(step_ == 0 && counters_.steps == 0, "a checkpoint is loaded before the first step");
   model_.load_state(in);
+  if (impl_->rechoose_dependencies)
+    impl_->system.dependencies = model_.dependency_relations(); // as after the step it ended
   in.section("STEP");
   velocity_ = in.vector();
   if (velocity_.size() != model_.n_dofs())

@@ -17,6 +17,7 @@ namespace {
 
 using testing::contact_for;
 using testing::elastic;
+using testing::irregular_mesh;
 using testing::line;
 using testing::make_setup;
 using testing::rectangle;
@@ -27,40 +28,6 @@ const Eigen::Vector3d sigma0(-0.5e6, -1.0e6, 0.0);
 
 enum class Joints { one_set, two_sets, inclined };
 enum class Mesh { regular, irregular };
-
-/// A math mesh of structured triangles of @p size over [x0, x1] x [y0, y1] (one size beyond
-/// on every side), its interior nodes moved off the grid by up to 0.2 size: triangles of
-/// every shape and orientation, as a gmsh mesh has, that follow neither the boundary nor
-/// the joints.
-MathMesh irregular_mesh(double x0, double y0, double x1, double y1, double size) {
-  const int nx = static_cast<int>(std::ceil((x1 - x0) / size)) + 2;
-  const int ny = static_cast<int>(std::ceil((y1 - y0) / size)) + 2;
-  MathMesh math;
-  for (int j = 0; j <= ny; ++j) {
-    for (int i = 0; i <= nx; ++i) {
-      double x = x0 - size + size * i;
-      double y = y0 - size + size * j;
-      if (i > 0 && i < nx && j > 0 && j < ny) {
-        x += 0.2 * size * std::sin(3.1 * i + 7.3 * j);
-        y += 0.2 * size * std::cos(5.7 * i - 2.9 * j);
-      }
-      math.nodes.emplace_back(x, y);
-    }
-  }
-  for (int j = 0; j < ny; ++j) {
-    for (int i = 0; i < nx; ++i) {
-      const int a = (nx + 1) * j + i;
-      if ((i + j) % 2 == 0) {
-        math.triangles.push_back({a, a + 1, a + nx + 2});
-        math.triangles.push_back({a, a + nx + 2, a + nx + 1});
-      } else {
-        math.triangles.push_back({a, a + 1, a + nx + 1});
-        math.triangles.push_back({a + 1, a + nx + 2, a + nx + 1});
-      }
-    }
-  }
-  return math;
-}
 
 struct MassCase {
   Joints joints = Joints::one_set;

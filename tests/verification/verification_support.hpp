@@ -83,6 +83,40 @@ template <class ExactStress> double stress_energy(const Model& model, ExactStres
       model, [&](const ModelElement&, const Point2& x) { return Eigen::Vector3d(exact(x)); });
 }
 
+/// A math mesh of structured triangles of @p size over [x0, x1] x [y0, y1] (one size beyond
+/// on every side), its interior nodes moved off the grid by up to 0.2 size: triangles of
+/// every shape and orientation, as a gmsh mesh has, that follow neither the boundary nor
+/// the joints.
+inline MathMesh irregular_mesh(double x0, double y0, double x1, double y1, double size) {
+  const int nx = static_cast<int>(std::ceil((x1 - x0) / size)) + 2;
+  const int ny = static_cast<int>(std::ceil((y1 - y0) / size)) + 2;
+  MathMesh math;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      double x = x0 - size + size * i;
+      double y = y0 - size + size * j;
+      if (i > 0 && i < nx && j > 0 && j < ny) {
+        x += 0.2 * size * std::sin(3.1 * i + 7.3 * j);
+        y += 0.2 * size * std::cos(5.7 * i - 2.9 * j);
+      }
+      math.nodes.emplace_back(x, y);
+    }
+  }
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int a = (nx + 1) * j + i;
+      if ((i + j) % 2 == 0) {
+        math.triangles.push_back({a, a + 1, a + nx + 2});
+        math.triangles.push_back({a, a + nx + 2, a + nx + 1});
+      } else {
+        math.triangles.push_back({a, a + 1, a + nx + 1});
+        math.triangles.push_back({a + 1, a + nx + 2, a + nx + 1});
+      }
+    }
+  }
+  return math;
+}
+
 /// Physical mesh + math mesh + cover system + model, ready for a stepper.
 struct Setup {
   PhysicalMesh physical;
@@ -275,6 +309,12 @@ struct Topple {
   double width = 0.3;
   double height = 1.0;
   int order = 0;
+  /// The block's kind (the ramp is NMM), and for an NMM block its material's exact_rotation.
+  ElementKind block_kind = ElementKind::nmm;
+  bool exact_rotation = false;
+  double young = 1e10;     ///< Pa, of block and ramp (the penalty is 40 times it)
+  double time_step = 2e-3; ///< s
+  double cover_size = 0.1; ///< m, of the regular math mesh
   /// Start from the initial equilibrium (TimeStepper::equilibrate()) instead of unloaded
   /// springs.
   bool equilibrium = false;
@@ -293,10 +333,12 @@ struct Topple {
     const Point2 down = -0.5 * up;
     const Point2 end = 5.0 * along;
     MaterialRegion ramp{"ramp", {{{{0, 0}, down, end + down, end}, {}}}};
-    const ElasticMaterial rock = testing::elastic(1e10, 0.25, 2500.0, PlaneCondition::strain);
+    const ElasticMaterial rock = testing::elastic(young, 0.25, 2500.0, PlaneCondition::strain);
+    ElasticMaterial block_rock = rock;
+    block_rock.exact_rotation = exact_rotation;
     testing::Setup s = testing::make_setup(
         {ramp, block}, {testing::line("seat", a, b), testing::line("base", down, end + down)}, {0},
-        nullptr, 0.1, rock, order);
+        nullptr, cover_size, {rock, block_rock}, order, {ElementKind::nmm, block_kind});
     Scene scene;
     scene.supports = curve_support_points(s.model, 1, true, true, SupportMethod::exact, "base");
     scene.body_loads.push_back({{0.0, -9.81}, {}});
@@ -306,10 +348,10 @@ struct Topple {
     scene.monitors.push_back({s.model.find_element(low, 1e-9), low});
     scene.monitors.push_back({s.model.find_element(high, 1e-9), high});
     StepperOptions options;
-    options.time_step = 2e-3;
+    options.time_step = time_step;
     TimeStepper stepper(
         s.model, scene, options,
-        testing::contact_for(s.model, 40.0 * 1e10, {std::numbers::pi / 4, 0.0, 0.0}));
+        testing::contact_for(s.model, 40.0 * young, {std::numbers::pi / 4, 0.0, 0.0}));
     if (equilibrium)
       (void)stepper.equilibrate();
     const Point2 axis0 =

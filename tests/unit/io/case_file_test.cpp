@@ -386,6 +386,14 @@ TEST(CaseFile, EveryExtensionKeyIsRead) {
   EXPECT_NE(spec.warnings[0].find("order has no effect"), std::string::npos) << spec.warnings[0];
 }
 
+TEST(CaseFile, ExactRotationIsReadForNmmRegions) {
+  // NMM blocks turn exactly with it too (Model::turn_exactly); off by default (above).
+  const CaseSpec spec =
+      parse_case_text(head + rock + "exact_rotation = true\n" + analysis, "case.toml");
+  EXPECT_EQ(spec.materials.at(0).model, MaterialModel::nmm);
+  EXPECT_TRUE(spec.materials.at(0).exact_rotation);
+}
+
 TEST(CaseFile, NonFatalRemarksBecomeWarningsWithTheirLine) {
   const std::string text = head +
                            "[materials.rock]\ndensity = 2600.0\nyoung = 5.0e9\npoisson = 0.25\n"
@@ -531,10 +539,8 @@ std::vector<BadCase> bad_cases() {
       {"StringForBoolean", head + rock + "model = \"vem\"\nexact_rotation = \"yes\" # <-\n",
        "exact_rotation must be true or false (without quotes)"},
       {"ExactRotationOfDdaBlocks", head + rock + "model = \"dda\"\nexact_rotation = true # <-\n",
-       "[materials.rock] exact_rotation is a choice of `vem` regions (DDA blocks always turn by "
-       "their rotation exactly); remove it"},
-      {"ExactRotationOfNmmCovers", head + rock + "exact_rotation = false # <-\n",
-       "(NMM covers move by their cover functions); remove it"},
+       "[materials.rock] exact_rotation is a choice of `nmm` and `vem` regions (DDA blocks "
+       "always turn by their rotation exactly); remove it"},
       {"FractionalSteps", head + rock + "[analysis]\nsteps = 1.5 # <-\n",
        "steps must be a whole number, not 1.5"},
       {"StringForSteps", head + rock + "[analysis]\nsteps = \"100\" # <-\n",
