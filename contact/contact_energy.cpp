@@ -70,6 +70,13 @@ ContactSystem::SpringWork ContactSystem::spring_work(const Model& model,
     const double lost = done + start - end;
     work.start += start;
     work.end += end;
+    if (before == ContactMode::open && p.mode == ContactMode::open) {
+      // A yielded bond open throughout pulls with the constant t L: a force of fixed size,
+      // whose work along the step's opening is lost and along a closing comes back out of
+      // what its opening took (its net opening times t L is what it dissipates).
+      work.lost += lost;
+      continue;
+    }
     (lost >= 0.0 ? work.lost : work.made) += std::abs(lost);
   }
   return work;
