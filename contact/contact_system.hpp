@@ -254,6 +254,13 @@ public:
   [[nodiscard]] int n_closed() const;
   /// Closed contact points sliding now (ContactMode::slide).
   [[nodiscard]] int n_sliding() const;
+  /// The block of boundary edge @p edge (a ContactPoint's slave_edge or master), as
+  /// begin_step() numbered the boundary; -1 for an edge it does not have.
+  [[nodiscard]] int edge_block(int edge) const noexcept {
+    return edge >= 0 && edge < boundary_.n_vertices()
+               ? boundary_.block[static_cast<std::size_t>(edge)]
+               : -1;
+  }
   /// Largest penetration of the springs of a closed contact after the last solve (offset -
   /// gap: an angle contact found already penetrating counts from its offset), m.
   [[nodiscard]] double max_penetration() const;

@@ -284,16 +284,14 @@ std::vector<BlockState> block_states(const Model& model,
   }
   std::vector<bool> closed(n_blocks, false);
   std::vector<bool> sliding(n_blocks, false);
-  if (contact != nullptr && contact->n_points() > 0) {
-    const ContactBoundary boundary = contact_boundary(model);
+  if (contact != nullptr) {
     for (const ContactPoint& point : contact->points()) {
       if (point.mode == ContactMode::open)
         continue;
       for (const int edge : {point.slave_edge, point.master}) {
-        if (edge < 0 || edge >= boundary.n_vertices())
-          continue;
-        const auto b = static_cast<std::size_t>(boundary.block[static_cast<std::size_t>(edge)]);
-        if (b >= n_blocks)
+        const int block = contact->edge_block(edge);
+        const auto b = static_cast<std::size_t>(block);
+        if (block < 0 || b >= n_blocks)
           continue;
         closed[b] = true;
         if (point.mode == ContactMode::slide)
