@@ -5,7 +5,6 @@
 #include "contact/contact_system.hpp"
 
 #include <cmath>
-#include <utility>
 
 namespace nmm {
 
