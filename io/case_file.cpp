@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/case_file.hpp"
 
+#include "io/case_table.hpp"
 #include "io/text.hpp"
 #include "mesh/error.hpp"
 
@@ -9,11 +10,9 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <map>
 #include <span>
 #include <sstream>
 #include <utility>
@@ -42,9 +41,7 @@ const JointSpec* CaseSpec::find_joint(std::string_view name) const {
 
 namespace {
 
-// No number of a case in SI units comes near this (a neutron star's density is 5e17 kg/m^3),
-// and products of three such numbers still fit in a double.
-constexpr double largest_input_magnitude = 1e100;
+using namespace case_table;
 
 // The schema: the keys each table accepts. Also used to say where a misplaced key belongs.
 constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geometry_time_limit",
@@ -89,12 +86,6 @@ constexpr std::string_view analysis_keys[] = {"kind",
 constexpr std::string_view monitor_keys[] = {"name", "point"};
 constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every", "moved_threshold"};
 
-constexpr std::string_view top_level_name = "the top level";
-
-struct TableKeys {
-  std::string_view table;
-  std::span<const std::string_view> keys;
-};
 constexpr std::array<TableKeys, 10> all_tables{{{top_level_name, top_level_keys},
                                                 {"[cover_mesh]", cover_mesh_keys},
                                                 {"[materials.NAME]", material_keys},
@@ -106,360 +97,6 @@ constexpr std::array<TableKeys, 10> all_tables{{{top_level_name, top_level_keys}
                                                 {"[[monitor]]", monitor_keys},
                                                 {"[output]", output_keys}}};
 
-std::string join(std::span<const std::string_view> words, std::string_view quote = "") {
-  std::string result;
-  for (const std::string_view word : words) {
-    if (!result.empty())
-      result += ", ";
-    result.append(quote).append(word).append(quote);
-  }
-  return result;
-}
-
-std::string format_number(double value) {
-  std::array<char, 32> buffer{};
-  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return error == std::errc{} ? std::string(buffer.data(), end) : std::string("?");
-}
-
-std::string range_requirement(std::int64_t minimum, std::int64_t maximum) {
-  if (maximum == std::numeric_limits<std::int64_t>::max())
-    return "it must be >= " + std::to_string(minimum);
-  return "it must be from " + std::to_string(minimum) + " to " + std::to_string(maximum);
-}
-
-std::string describe_type(const toml::node& node) {
-  switch (node.type()) {
-  case toml::node_type::table:
-    return "a table";
-  case toml::node_type::array:
-    return "an array";
-  case toml::node_type::string:
-    return "a string (" + in_quotes(node.as_string()->get()) + ")";
-  case toml::node_type::integer:
-    return "an integer";
-  case toml::node_type::floating_point:
-    return "a number";
-  case toml::node_type::boolean:
-    return "a boolean";
-  case toml::node_type::date:
-  case toml::node_type::time:
-  case toml::node_type::date_time:
-    return "a date or time";
-  case toml::node_type::none:
-    break;
-  }
-  return "nothing";
-}
-
-struct Position {
-  int line = 0;
-  int column = 0;
-  auto operator<=>(const Position&) const = default;
-};
-
-Position position_of(const toml::source_region& region) {
-  return {static_cast<int>(region.begin.line), static_cast<int>(region.begin.column)};
-}
-
-// Where the messages go: the file name and the warnings collected so far.
-class Context {
-public:
-  explicit Context(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(Position at, const std::string& message) const {
-    throw InputError(file_, at.line, at.column, message);
-  }
-  void warn(int line, const std::string& message) {
-    std::ostringstream out;
-    out << file_ << ':' << line << ": " << message;
-    warnings_.push_back(out.str());
-  }
-  [[nodiscard]] std::vector<std::string> take_warnings() { return std::move(warnings_); }
-
-private:
-  std::string file_;
-  std::vector<std::string> warnings_;
-};
-
-// Where else a misplaced key would be accepted, as a hint for the unknown-key message.
-std::string where_key_belongs(std::string_view key, std::string_view this_table) {
-  std::vector<std::string_view> tables;
-  for (const TableKeys& entry : all_tables) {
-    if (entry.table != this_table &&
-        std::find(entry.keys.begin(), entry.keys.end(), key) != entry.keys.end())
-      tables.push_back(entry.table);
-  }
-  if (tables.empty())
-    return {};
-  if (tables.front() == top_level_name)
-    return std::string(key) +
-           " is a top-level key: move it above the first [table] header (a key belongs to "
-           "the nearest header above it)";
-  return std::string(key) + " belongs in " + join(tables) + ": move it under that header";
-}
-
-// One TOML table of the case file with its allowed keys; every accessor reports problems
-// at the key or value they concern. Unknown keys are rejected on construction, before any
-// value is read, so a misspelt key is reported as such and not as a missing one.
-class TableView {
-public:
-  TableView(Context& context,
-            const toml::table& table,
-            std::string display_name,
-            std::span<const std::string_view> allowed)
-      : context_(context), table_(table), name_(std::move(display_name)), allowed_(allowed) {
-    reject_unknown_keys();
-  }
-
-  [[nodiscard]] const std::string& name() const { return name_; }
-  // How a key is named in messages: "[materials.rock] young", or just "geometry".
-  [[nodiscard]] std::string subject(std::string_view key) const {
-    return name_ == top_level_name ? std::string(key) : name_ + " " + std::string(key);
-  }
-  [[nodiscard]] Position position() const { return position_of(table_.source()); }
-  [[nodiscard]] const toml::node* find(std::string_view key) const { return table_.get(key); }
-  [[nodiscard]] bool has(std::string_view key) const { return find(key) != nullptr; }
-
-  [[nodiscard]] Position key_position(std::string_view key) const {
-    for (auto&& [name, node] : table_) {
-      if (name.str() == key)
-        return position_of(name.source());
-    }
-    return position();
-  }
-  [[nodiscard]] Position value_position(std::string_view key) const {
-    const toml::node* node = find(key);
-    return node ? position_of(node->source()) : position();
-  }
-
-  [[noreturn]] void fail_at_key(std::string_view key, const std::string& message) const {
-    context_.fail(key_position(key), message);
-  }
-  [[noreturn]] void fail_at_value(std::string_view key, const std::string& message) const {
-    context_.fail(value_position(key), message);
-  }
-  [[noreturn]] void
-  fail_missing(std::string_view key, std::string_view meaning, std::string_view example) const {
-    context_.fail(position(), name_ + " is missing " + std::string(key) + " (" +
-                                  std::string(meaning) + "); add a line such as " +
-                                  std::string(key) + " = " + std::string(example));
-  }
-  // "[materials.rock] young = -5 is out of range; " + requirement.
-  [[noreturn]] void
-  fail_range(std::string_view key, double value, const std::string& requirement) const {
-    fail_at_value(key,
-                  subject(key) + " = " + format_number(value) + " is out of range; " + requirement);
-  }
-
-  // A number (integers are accepted); finite.
-  [[nodiscard]] std::optional<double>
-  number(std::string_view key, std::string_view unit, std::string_view example) const {
-    const toml::node* node = find(key);
-    if (!node)
-      return std::nullopt;
-    return to_number(*node, key, unit, example);
-  }
-  [[nodiscard]] double number_or(std::string_view key,
-                                 double fallback,
-                                 std::string_view unit,
-                                 std::string_view example) const {
-    return number(key, unit, example).value_or(fallback);
-  }
-  [[nodiscard]] double required_number(std::string_view key,
-                                       std::string_view meaning,
-                                       std::string_view unit,
-                                       std::string_view example) const {
-    const std::optional<double> value = number(key, unit, example);
-    if (!value)
-      fail_missing(key, meaning, example);
-    return *value;
-  }
-
-  // A whole number in [minimum, maximum]; an integral float such as 1e4 is accepted.
-  [[nodiscard]] std::optional<std::int64_t> integer(std::string_view key,
-                                                    std::int64_t minimum,
-                                                    std::int64_t maximum,
-                                                    std::string_view example) const {
-    const toml::node* node = find(key);
-    if (!node)
-      return std::nullopt;
-    std::int64_t value = 0;
-    if (const auto* integral = node->as_integer()) {
-      value = integral->get();
-    } else if (const auto* floating = node->as_floating_point()) {
-      const double x = floating->get();
-      if (!std::isfinite(x) || x != std::floor(x))
-        context_.fail(position_of(node->source()),
-                      subject(key) + " must be a whole number, not " + format_number(x) +
-                          "; write e.g. " + std::string(key) + " = " + std::string(example));
-      // Beyond 2^53 a double no longer holds every integer; no count here gets near that.
-      if (std::abs(x) > 9.0e15)
-        context_.fail(position_of(node->source()), subject(key) + " = " + format_number(x) +
-                                                       " is out of range; " +
-                                                       range_requirement(minimum, maximum));
-      value = static_cast<std::int64_t>(x);
-    } else {
-      fail_type(*node, key, "a whole number", example);
-    }
-    if (value < minimum || value > maximum)
-      context_.fail(position_of(node->source()), subject(key) + " = " + std::to_string(value) +
-                                                     " is out of range; " +
-                                                     range_requirement(minimum, maximum));
-    return value;
-  }
-  [[nodiscard]] int small_integer_or(std::string_view key,
-                                     int fallback,
-                                     int minimum,
-                                     int maximum,
-                                     std::string_view example) const {
-    return static_cast<int>(integer(key, minimum, maximum, example).value_or(fallback));
-  }
-
-  [[nodiscard]] bool boolean_or(std::string_view key, bool fallback) const {
-    const toml::node* node = find(key);
-    if (!node)
-      return fallback;
-    const auto* value = node->as_boolean();
-    if (!value)
-      fail_type(*node, key, "true or false (without quotes)", fallback ? "true" : "false");
-    return value->get();
-  }
-
-  [[nodiscard]] std::optional<std::string>
-  string(std::string_view key, std::string_view meaning, std::string_view example) const {
-    const toml::node* node = find(key);
-    if (!node)
-      return std::nullopt;
-    const auto* text = node->as_string();
-    if (!text)
-      fail_type(*node, key, "a string in double quotes (" + std::string(meaning) + ")", example);
-    return text->get();
-  }
-  // A name of something in the geometry: a non-empty string.
-  [[nodiscard]] std::optional<std::string> name_string(std::string_view key,
-                                                       std::string_view meaning) const {
-    std::optional<std::string> text = string(key, meaning, "\"base\"");
-    if (text && text->empty())
-      fail_at_value(key, subject(key) + " is empty; give the name of a " + std::string(meaning));
-    return text;
-  }
-
-  // One of @p choices; returns its index (or @p fallback when the key is absent).
-  [[nodiscard]] std::size_t choice(std::string_view key,
-                                   std::span<const std::string_view> choices,
-                                   std::size_t fallback) const {
-    const toml::node* node = find(key);
-    if (!node)
-      return fallback;
-    const auto* text = node->as_string();
-    if (!text)
-      fail_type(*node, key, "one of the strings " + join(choices, "\""),
-                in_quotes(choices[fallback]));
-    const auto found = std::find(choices.begin(), choices.end(), text->get());
-    if (found != choices.end())
-      return static_cast<std::size_t>(found - choices.begin());
-    std::string message = subject(key) + " = " + in_quotes(text->get()) +
-                          " is not allowed; use one of " + join(choices, "\"");
-    if (const std::string_view near = closest(text->get(), choices); !near.empty())
-      message = subject(key) + " = " + in_quotes(text->get()) + " is not allowed; did you mean " +
-                in_quotes(near) + "? (allowed: " + join(choices, "\"") + ")";
-    context_.fail(position_of(node->source()), message);
-  }
-
-  // An array of exactly N finite numbers.
-  template <int N>
-  [[nodiscard]] std::optional<Eigen::Matrix<double, N, 1>>
-  vector(std::string_view key, std::string_view unit, std::string_view example) const {
-    const toml::node* node = find(key);
-    if (!node)
-      return std::nullopt;
-    const auto* array = node->as_array();
-    if (!array)
-      fail_type(*node, key,
-                "an array of " + std::to_string(N) + " numbers (" + std::string(unit) + ")",
-                example);
-    if (array->size() != static_cast<std::size_t>(N))
-      context_.fail(position_of(node->source()),
-                    subject(key) + " has " + std::to_string(array->size()) +
-                        " value(s) but needs exactly " + std::to_string(N) + "; write e.g. " +
-                        std::string(key) + " = " + std::string(example));
-    Eigen::Matrix<double, N, 1> result;
-    for (int i = 0; i < N; ++i)
-      result[i] = to_number((*array)[static_cast<std::size_t>(i)], key, unit, example);
-    return result;
-  }
-
-private:
-  [[noreturn]] void fail_type(const toml::node& node,
-                              std::string_view key,
-                              const std::string& expected,
-                              std::string_view example) const {
-    std::string message = subject(key) + " must be " + expected + ", not " + describe_type(node);
-    if (node.is_string() && expected.find("number") != std::string::npos)
-      message += "; remove the quotes: " + std::string(key) + " = " + std::string(example);
-    else
-      message += "; write e.g. " + std::string(key) + " = " + std::string(example);
-    context_.fail(position_of(node.source()), message);
-  }
-
-  double to_number(const toml::node& node,
-                   std::string_view key,
-                   std::string_view unit,
-                   std::string_view example) const {
-    double value = 0.0;
-    if (const auto* integral = node.as_integer())
-      value = static_cast<double>(integral->get());
-    else if (const auto* floating = node.as_floating_point())
-      value = floating->get();
-    else
-      fail_type(node, key, "a number (" + std::string(unit) + ")", example);
-    if (!std::isfinite(value))
-      context_.fail(position_of(node.source()), subject(key) + " is " + format_number(value) +
-                                                    "; it must be a finite number (" +
-                                                    std::string(unit) + ")");
-    if (std::abs(value) > largest_input_magnitude)
-      context_.fail(position_of(node.source()),
-                    subject(key) + " is " + format_number(value) + ", which is not finite in " +
-                        "the model's units: the step equations multiply such values together " +
-                        "(stiffness by displacement, mass by velocity squared) and beyond " +
-                        format_number(largest_input_magnitude) +
-                        " the products overflow double precision (1.8e308); check the value "
-                        "and its unit (" +
-                        std::string(unit) + ", SI)");
-    return value;
-  }
-
-  void reject_unknown_keys() const {
-    const toml::key* first = nullptr;
-    for (auto&& [key, node] : table_) {
-      if (std::find(allowed_.begin(), allowed_.end(), key.str()) != allowed_.end())
-        continue;
-      if (!first || position_of(key.source()) < position_of(first->source()))
-        first = &key;
-    }
-    if (!first)
-      return;
-    const std::string_view key = first->str();
-    std::string message = name_ == top_level_name
-                              ? "unknown key " + std::string(key) + " at the top level"
-                              : name_ + " has no key " + std::string(key);
-    if (const std::string elsewhere = where_key_belongs(key, name_); !elsewhere.empty())
-      message += "; " + elsewhere;
-    else if (const std::string_view near = closest(key, allowed_); !near.empty())
-      message += "; did you mean " + std::string(near) + "?";
-    else
-      message += "; remove it or correct its spelling";
-    message += " (allowed: " + join(allowed_) + ")";
-    context_.fail(position_of(first->source()), message);
-  }
-
-  Context& context_;
-  const toml::table& table_;
-  std::string name_;
-  std::span<const std::string_view> allowed_;
-};
-
 constexpr std::string_view cover_mesh_kinds[] = {"regular", "gmsh"};
 constexpr std::string_view material_models[] = {"nmm", "dda", "vem"};
 constexpr std::string_view plane_conditions[] = {"strain", "stress"};
@@ -467,89 +104,6 @@ constexpr std::string_view fixed_components[] = {"x", "y", "xy"};
 constexpr std::string_view boundary_methods[] = {"exact", "penalty"};
 constexpr std::string_view analysis_kinds[] = {"dynamic", "static"};
 constexpr std::string_view solver_kinds[] = {"cholmod", "pcg"};
-
-// A table-valued top-level key ([cover_mesh], [analysis], ...), or nullptr when absent.
-const toml::table*
-single_table(const Context& context, const toml::table& root, std::string_view key) {
-  const toml::node* node = root.get(key);
-  if (!node)
-    return nullptr;
-  if (const auto* table = node->as_table())
-    return table;
-  const std::string header = "[" + std::string(key) + "]";
-  if (node->is_array())
-    context.fail(position_of(node->source()),
-                 std::string(key) + " must be one table, not an array of tables; write " + header +
-                     ", not [" + header + "]");
-  context.fail(position_of(node->source()), std::string(key) + " must be a table, not " +
-                                                describe_type(*node) + "; write the header " +
-                                                header + " and put its keys on the lines below");
-}
-
-// The tables of an array of tables ([[boundary]], [[load]], [[monitor]]).
-std::vector<const toml::table*>
-table_array(const Context& context, const toml::table& root, std::string_view key) {
-  std::vector<const toml::table*> tables;
-  const toml::node* node = root.get(key);
-  if (!node)
-    return tables;
-  const std::string header = "[[" + std::string(key) + "]]";
-  const auto* array = node->as_array();
-  if (!array)
-    context.fail(position_of(node->source()),
-                 std::string(key) + " must be an array of tables, not " + describe_type(*node) +
-                     "; write " + header + " (double brackets) before each entry");
-  for (const toml::node& element : *array) {
-    const auto* table = element.as_table();
-    if (!table)
-      context.fail(position_of(element.source()), "each " + std::string(key) +
-                                                      " entry must be a table, not " +
-                                                      describe_type(element) + "; write " + header +
-                                                      " followed by its keys on the lines below");
-    tables.push_back(table);
-  }
-  return tables;
-}
-
-// Named tables ([materials.NAME], [joints.NAME]) in the order of the file.
-struct NamedTable {
-  std::string name;
-  Position position;
-  const toml::table* table;
-};
-
-std::vector<NamedTable> named_tables(const Context& context,
-                                     const toml::table& root,
-                                     std::string_view key,
-                                     std::span<const std::string_view> item_keys,
-                                     std::string_view what) {
-  std::vector<NamedTable> items;
-  const toml::table* parent = single_table(context, root, key);
-  if (!parent)
-    return items;
-  for (auto&& [name, node] : *parent) {
-    const Position at = position_of(name.source());
-    const auto* table = node.as_table();
-    if (!table) {
-      const std::string item = std::string(key) + "." + std::string(name.str());
-      std::string message = item + " must be a table, not " + describe_type(node) + "; write [" +
-                            item + "] (" + std::string(name.str()) + " = a " + std::string(what) +
-                            ") and put its keys on the lines below";
-      if (std::find(item_keys.begin(), item_keys.end(), name.str()) != item_keys.end())
-        message = std::string(name.str()) + " cannot be set on [" + std::string(key) +
-                  "] itself; write [" + std::string(key) + ".NAME] (NAME = a " + std::string(what) +
-                  ") and put " + std::string(name.str()) + " under it";
-      context.fail(at, message);
-    }
-    if (name.str().empty())
-      context.fail(at, "[" + std::string(key) + ".\"\"] has an empty name; use the name of a " +
-                           std::string(what));
-    items.push_back({std::string(name.str()), at, table});
-  }
-  std::sort(items.begin(), items.end(),
-            [](const NamedTable& a, const NamedTable& b) { return a.position < b.position; });
-  return items;
-}
 
 std::filesystem::path resolve(const std::filesystem::path& case_file,
                               const std::filesystem::path& path) {
@@ -1149,7 +703,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
 
 CaseSpec parse_case_text(std::string_view text, const std::filesystem::path& name_for_messages) {
   const std::string file = name_for_messages.string();
-  Context context(file);
+  Context context(file, all_tables);
   toml::table root;
   try {
     root = toml::parse(text, std::string_view(file));
