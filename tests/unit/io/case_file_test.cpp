@@ -448,7 +448,7 @@ TEST(CaseFile, PenaltyFarFromFortyTimesYoungIsAWarningAtItsKey) {
 
 // The reference page's examples must be valid cases: they are what users copy.
 TEST(CaseFile, ExamplesOfTheReferencePageAreValid) {
-  const fs::path page = fs::path(__FILE__).parent_path() / "../../../docs/case-file.md";
+  const fs::path page = fs::path(NMM_DOCS_DIR) / "case-file.md";
   std::ifstream in(page);
   ASSERT_TRUE(in) << "cannot open " << page;
   std::vector<std::string> blocks;
