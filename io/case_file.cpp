@@ -77,6 +77,7 @@ constexpr std::string_view analysis_keys[] = {"kind",
                                               "open_close_max",
                                               "solver",
                                               "pcg_tolerance",
+                                              "pcg_mode_tolerance",
                                               "max_step_cuts",
                                               "end_time",
                                               "initial_equilibrium",
@@ -434,6 +435,13 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
     view.fail_range("pcg_tolerance", spec.pcg_tolerance,
                     "it must be between 1e-15 and 1e-3: the residual of a conjugate-gradient "
                     "solve relative to its right-hand side");
+  spec.pcg_mode_tolerance =
+      view.number_or("pcg_mode_tolerance", spec.pcg_mode_tolerance, "a fraction", "1.0e-6");
+  if (!(spec.pcg_mode_tolerance >= 1e-15 && spec.pcg_mode_tolerance <= 1e-3))
+    view.fail_range("pcg_mode_tolerance", spec.pcg_mode_tolerance,
+                    "it must be between 1e-15 and 1e-3: the residual of the conjugate-gradient "
+                    "solves on which contacts' modes are decided, relative to their right-hand "
+                    "side (at most pcg_tolerance: every solve to pcg_tolerance)");
   spec.max_step_cuts = view.small_integer_or("max_step_cuts", 10, 0, 50, "10");
   spec.energy_tolerance =
       view.number_or("energy_tolerance", spec.energy_tolerance, "a fraction", "0.05");

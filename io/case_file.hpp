@@ -183,6 +183,9 @@ struct AnalysisSpec {
   LinearSolverKind solver = LinearSolverKind::cholmod;
   /// Residual over right-hand side at which a conjugate-gradient solve stops (solver = "pcg").
   double pcg_tolerance = 1e-10;
+  /// With "pcg": the tolerance of the solves on which contacts' modes are decided (the
+  /// last solve of an open-close iteration is to pcg_tolerance).
+  double pcg_mode_tolerance = 1e-6;
   /// Energy balance residual over its largest term above which a step warns, (0, 1]
   /// (StepperOptions::energy_tolerance).
   double energy_tolerance = 0.05;

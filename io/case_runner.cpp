@@ -615,7 +615,8 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_
   options.velocity_ratio = spec_.analysis.velocity_ratio;
   options.open_close_max = spec_.analysis.open_close_max;
   if (spec_.analysis.solver == LinearSolverKind::pcg)
-    options.conjugate_gradients = PcgOptions{.tolerance = spec_.analysis.pcg_tolerance};
+    options.conjugate_gradients = PcgOptions{.tolerance = spec_.analysis.pcg_tolerance,
+                                             .loose_tolerance = spec_.analysis.pcg_mode_tolerance};
   std::unique_ptr<ContactSystem> contact;
   if (touching)
     contact = make_contact_system(options.spring_stiffness);

@@ -73,6 +73,10 @@ public:
   /// The matrix's own column at which the last call that returned not_positive_definite met
   /// a non-positive pivot, or -1.
   [[nodiscard]] virtual long failed_column() const = 0;
+  /// An iterative solver's solves from now on stop at its loose tolerance (true) or at its
+  /// own (false). Returns whether the solver has a loose tolerance (a direct solver, which
+  /// solves exactly, ignores the call and returns false).
+  virtual bool set_loose(bool /*loose*/) { return false; }
 };
 
 } // namespace nmm

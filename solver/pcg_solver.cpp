@@ -37,6 +37,7 @@ struct PcgSolver::Impl {
   /// or conjugate gradients gave up on a system of it (until then or the next start_step()).
   bool singular_pattern = false;
   bool gave_up = false;
+  bool loose = false; ///< set_loose(): solves stop at options.loose_tolerance
   /// This step was tried by conjugate gradients, and they gave up in it (gave_up is reset by
   /// analyze(), these only by start_step()).
   bool tried = false;
@@ -375,7 +376,9 @@ SolveStatus PcgSolver::solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& soluti
     status = m.solve_directly(rhs, solution);
   } else {
     m.tried = true;
-    const double target = m.options.tolerance * rhs.norm();
+    const double tolerance =
+        m.loose ? std::max(m.options.tolerance, m.options.loose_tolerance) : m.options.tolerance;
+    const double target = tolerance * rhs.norm();
     if (solution.size() != rhs.size() || !solution.allFinite() || target == 0.0)
       solution.setZero(rhs.size()); // no guess, or the zero solution of a zero right side
     m.multiply(solution, m.q);
@@ -423,6 +426,11 @@ const SolverCounters& PcgSolver::counters() const { return impl_->counters; }
 
 std::string PcgSolver::name() const {
   return "conjugate gradients, block Jacobi (" + cholmod_version() + " when they do not converge)";
+}
+
+bool PcgSolver::set_loose(bool loose) {
+  impl_->loose = loose;
+  return impl_->options.loose_tolerance > impl_->options.tolerance;
 }
 
 long PcgSolver::failed_column() const { return impl_->failed_column; }

@@ -14,6 +14,11 @@ struct PcgOptions {
   /// A solve has converged when the residual's 2-norm is at most this fraction of the
   /// right-hand side's.
   double tolerance = 1e-10;
+  /// The tolerance of the solves of an open-close iteration while contacts still change
+  /// mode (set_loose(true)): its modes are decided on a solution this close, and the
+  /// iteration's last solve, once no mode changes, is done to `tolerance` (at most this
+  /// tolerance is used; not looser than `tolerance`).
+  double loose_tolerance = 1e-6;
   /// Iterations after which a solve gives up and is done by CHOLMOD instead.
   int max_iterations = 200;
   /// Most steps done by CHOLMOD alone after a step conjugate gradients gave up in (the
@@ -51,6 +56,7 @@ public:
   [[nodiscard]] const SolverCounters& counters() const override;
   [[nodiscard]] std::string name() const override;
   [[nodiscard]] long failed_column() const override;
+  bool set_loose(bool loose) override;
   /// Conjugate gradients are tried again on a pattern they gave up on in the last step,
   /// unless the step is one to skip.
   void start_step() override;

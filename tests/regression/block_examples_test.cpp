@@ -320,11 +320,13 @@ TEST_F(Example, LandingBlocksOfAPileGainNoEnergyFromLocksHeldBeyondFriction) {
 TEST_F(Example, TheWallOf70BlocksStepsAlikeByConjugateGradientsAndByCholmod) {
   // examples/13_block_wall_70 (70 DDA blocks on 367 contacts, 412 unknowns), its first 100
   // steps of 0.012 s by CHOLMOD and by [analysis] solver = "pcg" (PcgSolver, the default
-  // residual tolerance 1e-10): each step's system by conjugate gradients alone (no fallback
-  // to CHOLMOD), and the same run. Measured (2026-11-28): kinetic energy, work of the loads,
-  // the crest's settlement and a base block's stress differ by at most 5e-9 of their largest
-  // values; with pcg_tolerance = 1e-6 by up to 7e-7, with 1e-4 by 3e-5. The bound 1e-7 fails
-  // for a solver that stops four orders early, and leaves 20x for the error of 1e-10 as the
+  // residual tolerance 1e-10, and 1e-6 for the solves the contacts' modes are decided on,
+  // pcg_mode_tolerance): each step's system by conjugate gradients alone (no fallback to
+  // CHOLMOD), and the same run. Measured: kinetic energy, work of the loads, the crest's
+  // settlement and a base block's stress differ by at most 2e-8 of their largest values
+  // (5e-9 with every solve to 1e-10, 2e-7 to 5.5e-7 with the modes decided at 1e-4); with
+  // pcg_tolerance = 1e-6 by up to 7e-7, with 1e-4 by 3e-5. The bound 1e-7 fails for a solver
+  // whose last solve stops four orders early, and leaves 5x for the error of 1e-10 as the
   // blocks' contacts carry it from step to step. The count of closed contacts is not
   // compared: faces touching without force close or stay open on rounding-level gaps either way
   // (up to 11 of 452 in a step differ, with no trace in the motion).

@@ -208,6 +208,49 @@ TEST(PcgSolver, StartsFromTheGuessItIsGiven) {
   EXPECT_EQ(guess, Eigen::VectorXd::Zero(a.rows()));
 }
 
+TEST(PcgSolver, LooseSolvesStopAtTheLooseToleranceAndTightOnesGoOnFromThem) {
+  // What the open-close iteration does: modes decided on solves to loose_tolerance, the last
+  // solve to tolerance from the loose solution. The residuals are measured here, not taken
+  // from the solver: each solve ends within its own tolerance, the loose one not below a
+  // hundredth of it (conjugate gradients on this matrix of condition ~41 gain less than two
+  // orders an iteration), and the tight one from the loose guess takes fewer iterations
+  // than one from zero.
+  const SparseMatrix full = block_row(200, 3, 1.0, 10.0);
+  const SparseMatrix a = upper(full);
+  const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(a.rows(), -1.0, 2.0);
+  const auto relative_residual = [&](const Eigen::VectorXd& x) {
+    return (full * x - rhs).norm() / rhs.norm();
+  };
+  PcgSolver tight_only(PcgOptions{.tolerance = 1e-10, .loose_tolerance = 1e-4});
+  const Eigen::VectorXd reference = solve_anew(tight_only, a, rhs);
+  const long from_zero = tight_only.counters().iterations;
+  EXPECT_LE(relative_residual(reference), 1e-10);
+
+  PcgSolver solver(PcgOptions{.tolerance = 1e-10, .loose_tolerance = 1e-4});
+  ASSERT_EQ(solver.analyze(a), SolveStatus::ok);
+  ASSERT_EQ(solver.factorize(a), SolveStatus::ok);
+  EXPECT_TRUE(solver.set_loose(true));
+  Eigen::VectorXd x;
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  const long loose = solver.counters().iterations;
+  EXPECT_LE(relative_residual(x), 1e-4);
+  EXPECT_GT(relative_residual(x), 1e-6);
+  EXPECT_LT(loose, from_zero);
+  EXPECT_TRUE(solver.set_loose(false));
+  ASSERT_EQ(solver.solve(rhs, x), SolveStatus::ok);
+  EXPECT_LE(relative_residual(x), 1e-10);
+  EXPECT_LT(solver.counters().iterations - loose, from_zero);
+  EXPECT_LE((x - reference).norm(), 1e-8 * reference.norm());
+
+  // A loose tolerance at or below the solver's own changes nothing, and says so.
+  PcgSolver not_loose(PcgOptions{.tolerance = 1e-10, .loose_tolerance = 1e-12});
+  EXPECT_FALSE(not_loose.set_loose(true));
+  EXPECT_EQ(solve_anew(not_loose, a, rhs), reference);
+  // A direct solver has no loose tolerance.
+  CholmodSolver direct;
+  EXPECT_FALSE(direct.set_loose(true));
+}
+
 TEST(PcgSolver, HandsWhatItDoesNotSolveToCholmodForTheRestOfTheStep) {
   // Springs 1e4 times the mass term: far more than 3 iterations.
   const SparseMatrix a = upper(block_row(100, 3, 1.0, 1e4));
