@@ -2,6 +2,7 @@
 #include "io/case_file.hpp"
 
 #include "io/case_table.hpp"
+#include "io/joint_set_table.hpp"
 #include "io/text.hpp"
 #include "mesh/error.hpp"
 
@@ -47,7 +48,8 @@ using namespace case_table;
 constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geometry_time_limit",
                                                "cover_mesh", "materials", "joints",
                                                "contact",    "boundary",  "load",
-                                               "analysis",   "monitor",   "output"};
+                                               "analysis",   "monitor",   "output",
+                                               "joint_set"};
 constexpr std::string_view cover_mesh_keys[] = {
     "kind",          "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance",
     "geometry_sizes"};
@@ -87,11 +89,12 @@ constexpr std::string_view analysis_keys[] = {"kind",
 constexpr std::string_view monitor_keys[] = {"name", "point"};
 constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every", "moved_threshold"};
 
-constexpr std::array<TableKeys, 10> all_tables{{{top_level_name, top_level_keys},
+constexpr std::array<TableKeys, 11> all_tables{{{top_level_name, top_level_keys},
                                                 {"[cover_mesh]", cover_mesh_keys},
                                                 {"[materials.NAME]", material_keys},
                                                 {"[joints.NAME]", joint_keys},
                                                 {"[contact]", joint_keys},
+                                                {"[[joint_set]]", joint_set_keys},
                                                 {"[[boundary]]", boundary_keys},
                                                 {"[[load]]", load_keys},
                                                 {"[analysis]", analysis_keys},
@@ -682,6 +685,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
     const TableView view(context, *item.table, "[joints." + item.name + "]", joint_keys);
     spec.joints.push_back({item.name, item.position.line, read_joint_properties(view)});
   }
+  spec.joint_sets = read_joint_set_tables(context, root, file, spec.joints);
   if (const toml::table* table = single_table(context, root, "contact")) {
     const TableView view(context, *table, "[contact]", joint_keys);
     spec.contact = read_joint_properties(view);

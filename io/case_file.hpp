@@ -7,6 +7,7 @@
 #include "manifold/boundary_conditions.hpp"
 #include "manifold/material.hpp"
 #include "mesh/geometry.hpp"
+#include "mesh/joint_set.hpp"
 
 #include <Eigen/Core>
 
@@ -116,6 +117,19 @@ struct JointSpec {
   /// Line of `[joints.NAME]` (or of the key NAME) in the case file.
   int line = 0;
   JointProperties properties;
+};
+
+/// `[[joint_set]]`: joints generated from a set's angle, spacing, trace, gap and origin
+/// (docs/case-file.md; io/joint_set_table.cpp reads it, io/joint_sets.cpp generates them).
+struct JointSetSpec {
+  /// The `[joints.NAME]` whose properties the joints take (`joint`).
+  std::string joint;
+  /// `region`: the Physical Surface the joints are clipped to; empty: all material.
+  std::string region;
+  /// Line of this `[[joint_set]]` header in the case file.
+  int line = 0;
+  /// Everything else; `regions` is filled from `region` against the geometry.
+  JointSetParameters parameters;
 };
 
 /// `[[boundary]]`: fixed displacement components on a named curve or point.
@@ -243,6 +257,8 @@ struct CaseSpec {
   std::vector<MaterialSpec> materials;
   /// In the order of the case file.
   std::vector<JointSpec> joints;
+  /// In the order of the case file.
+  std::vector<JointSetSpec> joint_sets;
   /// Properties of every contact that is not on a named joint.
   JointProperties contact;
   std::vector<BoundarySpec> boundaries;

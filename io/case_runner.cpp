@@ -6,6 +6,7 @@
 #include "io/checkpoint.hpp"
 #include "io/cover_warnings.hpp"
 #include "io/gmsh_reader.hpp"
+#include "io/joint_sets.hpp"
 #include "io/step_output.hpp"
 #include "io/text.hpp"
 #include "io/vtk_writer.hpp"
@@ -386,6 +387,7 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
   phase("reading " + spec.geometry.string());
   Clock::time_point start = Clock::now();
   g.physical = read_physical_mesh(spec.geometry, read_options);
+  add_joint_sets(spec, g.physical); // [[joint_set]] joints, then like drawn Physical Curves
   g.seconds_geometry = seconds_since(start);
 
   // Every [materials.X] a region, every region a material.

@@ -53,6 +53,7 @@ EXAMPLES = [
     ("15_circular_sliding/case.toml", 20),
     ("16_jointed_double_cantilever/case.toml", 5),
     ("17_hertz_contact/case.toml", 1),
+    ("18_road_cut_joint_sets/case.toml", 50),
 ]
 
 

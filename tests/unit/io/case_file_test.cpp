@@ -481,6 +481,9 @@ TEST(CaseFile, ExamplesOfTheReferencePageAreValid) {
   EXPECT_EQ(full.materials[1].plane, PlaneCondition::stress);
   EXPECT_DOUBLE_EQ(full.materials[1].thickness, 0.3);
   EXPECT_DOUBLE_EQ(full.analysis.end_time.value(), 2.0);
+  ASSERT_EQ(full.joint_sets.size(), 1u);
+  EXPECT_DOUBLE_EQ(full.joint_sets[0].parameters.trace.value(), 8.0);
+  EXPECT_EQ(full.joint_sets[0].parameters.seed, 46u);
 }
 
 // ---- malformed input: each text must fail on the line marked "# <-" ----
