@@ -51,10 +51,13 @@ void account_energy(const StepContext& context,
 /// The balance of a dynamic step just accounted against the options' energy_tolerance (a warning
 /// into the context's warnings, the first time: @p warned) and energy_error_limit
 /// (@throws NumericalError). @p velocity: the step's new velocities (raw unknowns), to name
-/// where the energy went.
+/// where the energy went. A static load step (no inertia term) whose solve moved a point by
+/// @p largest, more than the model's size, with a balance that misses by more than 0.1 is a
+/// mechanism (@throws NumericalError).
 void judge_balance(const StepContext& context,
                    const StepReport& report,
                    const Eigen::VectorXd& velocity,
+                   double largest,
                    bool& warned);
 
 } // namespace nmm

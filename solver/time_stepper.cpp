@@ -239,7 +239,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   account_energy(context, impl_->system, solution.external, solution.raw, tries.dt,
                  solution.kinetic, impl_->ledger, report);
   if (!equilibrium)
-    judge_balance(context, report, solution.new_velocity, impl_->ledger.warned);
+    judge_balance(context, report, solution.new_velocity, solution.largest, impl_->ledger.warned);
   clock.lap(counters_.seconds_step_control);
   commit_step(context.kind, tries.dt, solution, report);
   clock.lap(counters_.seconds_update);
