@@ -2,11 +2,24 @@
 // contact/joint_law.cpp — Mohr-Coulomb joints with cohesion and tensile strength.
 #include "contact/joint_law.hpp"
 
+#include "mesh/error.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
 namespace nmm {
+
+JointStrength reduced_strength(const JointStrength& strength, double factor) {
+  NMM_ASSERT(factor > 0.0, "a strength reduction factor is > 0");
+  if (factor == 1.0)
+    return strength;
+  JointStrength reduced = strength;
+  reduced.friction_angle = std::atan(std::tan(strength.friction_angle) / factor);
+  reduced.cohesion = strength.cohesion / factor;
+  reduced.tensile_strength = strength.tensile_strength / factor;
+  return reduced;
+}
 
 MohrCoulombJoint::MohrCoulombJoint(std::vector<std::vector<JointStrength>> strength_of_edge,
                                    std::vector<std::vector<bool>> bonded_edge)

@@ -56,6 +56,12 @@ public:
   [[nodiscard]] virtual bool yields_open(std::span<const ContactPoint> points) const = 0;
 };
 
+/// @p strength reduced by the factor @p factor (strength reduction, `nmm fos`): friction
+/// coefficient tan(phi) / F, cohesion c / F, tensile strength T / F; the joint's stiffnesses
+/// unchanged. F = 1 gives @p strength to the bit (the atan of the tan would not).
+/// @pre factor > 0.
+[[nodiscard]] JointStrength reduced_strength(const JointStrength& strength, double factor);
+
 /// Mohr-Coulomb joints with cohesion and tensile strength: a point
 /// slides when its shear exceeds N tan(phi) + c L, a bonded point holds a tension up to
 /// t L, and a contact's strength is the weaker of its two surfaces' property by property.

@@ -2,6 +2,7 @@
 #include "io/case_file.hpp"
 
 #include "io/case_table.hpp"
+#include "io/fos_table.hpp"
 #include "io/joint_set_table.hpp"
 #include "io/text.hpp"
 #include "mesh/error.hpp"
@@ -9,7 +10,6 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <cmath>
 #include <fstream>
@@ -49,7 +49,7 @@ constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geome
                                                "cover_mesh", "materials", "joints",
                                                "contact",    "boundary",  "load",
                                                "analysis",   "monitor",   "output",
-                                               "joint_set"};
+                                               "joint_set",  "fos"};
 constexpr std::string_view cover_mesh_keys[] = {
     "kind",          "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance",
     "geometry_sizes"};
@@ -89,17 +89,14 @@ constexpr std::string_view analysis_keys[] = {"kind",
 constexpr std::string_view monitor_keys[] = {"name", "point"};
 constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every", "moved_threshold"};
 
-constexpr std::array<TableKeys, 11> all_tables{{{top_level_name, top_level_keys},
-                                                {"[cover_mesh]", cover_mesh_keys},
-                                                {"[materials.NAME]", material_keys},
-                                                {"[joints.NAME]", joint_keys},
-                                                {"[contact]", joint_keys},
-                                                {"[[joint_set]]", joint_set_keys},
-                                                {"[[boundary]]", boundary_keys},
-                                                {"[[load]]", load_keys},
-                                                {"[analysis]", analysis_keys},
-                                                {"[[monitor]]", monitor_keys},
-                                                {"[output]", output_keys}}};
+constexpr TableKeys all_tables[] = {
+    {top_level_name, top_level_keys},    {"[cover_mesh]", cover_mesh_keys},
+    {"[materials.NAME]", material_keys}, {"[joints.NAME]", joint_keys},
+    {"[contact]", joint_keys},           {"[[joint_set]]", joint_set_keys},
+    {"[[boundary]]", boundary_keys},     {"[[load]]", load_keys},
+    {"[analysis]", analysis_keys},       {"[[monitor]]", monitor_keys},
+    {"[output]", output_keys},           {"[fos]", fos_keys},
+};
 
 constexpr std::string_view cover_mesh_kinds[] = {"regular", "gmsh"};
 constexpr std::string_view material_models[] = {"nmm", "dda", "vem"};
@@ -689,6 +686,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
   if (const toml::table* table = single_table(context, root, "contact")) {
     const TableView view(context, *table, "[contact]", joint_keys);
     spec.contact = read_joint_properties(view);
+    spec.contact_line = view.position().line;
   }
 
   for (const toml::table* table : table_array(context, root, "boundary"))
@@ -705,6 +703,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
   }
 
   spec.output = read_output(context, root, file);
+  spec.fos = read_fos_table(context, root);
 
   check_whole_case(context, root, spec, materials, monitor_name_positions);
   spec.warnings = context.take_warnings();

@@ -4,6 +4,7 @@
 // DESIGN.md's contract "Case file (TOML)".
 #pragma once
 
+#include "io/fos_spec.hpp"
 #include "manifold/boundary_conditions.hpp"
 #include "manifold/material.hpp"
 #include "mesh/geometry.hpp"
@@ -261,11 +262,15 @@ struct CaseSpec {
   std::vector<JointSetSpec> joint_sets;
   /// Properties of every contact that is not on a named joint.
   JointProperties contact;
+  /// Line of `[contact]`; 0 when the case has none.
+  int contact_line = 0;
   std::vector<BoundarySpec> boundaries;
   std::vector<LoadSpec> loads;
   AnalysisSpec analysis;
   std::vector<MonitorSpec> monitors;
   OutputSpec output;
+  /// `[fos]`: the strength reduction of `nmm fos` (defaults when absent).
+  FosSpec fos;
   /// Non-fatal remarks, each "file:line: what; why it may matter".
   std::vector<std::string> warnings;
 

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/case_runner.hpp"
 
+#include "contact/joint_law.hpp"
 #include "io/atomic_file.hpp"
 #include "io/block_results.hpp"
 #include "io/checkpoint.hpp"
@@ -464,7 +465,8 @@ CaseGeometry build_case_geometry(const CaseSpec& spec, const PhaseCallback& on_p
 // ------------------------------------------------------------------------------------------
 // The analysis
 
-CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase) : spec_(std::move(spec)) {
+CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase, double strength_factor)
+    : spec_(std::move(spec)), strength_factor_(strength_factor) {
   geometry_ = build_case_geometry(spec_, on_phase);
   const PhysicalMesh& physical = geometry_.physical;
   warnings_ = spec_.warnings;
@@ -789,7 +791,7 @@ std::unique_ptr<ContactSystem> CaseAnalysis::make_contact_system(double penalty)
       const auto joint = joint_of_curve.find(edge.joint);
       const JointProperties* properties =
           joint != joint_of_curve.end() ? joint->second : &spec_.contact;
-      s.push_back(strength_of(*properties));
+      s.push_back(reduced_strength(strength_of(*properties), strength_factor_));
       b.push_back(edge.joint >= 0 &&
                   (properties->cohesion > 0.0 || properties->tensile_strength > 0.0));
     }

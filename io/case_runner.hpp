@@ -66,7 +66,11 @@ public:
   ///         `[[load]]` target that is not a Physical Curve / Physical Point of the right kind or
   ///         that misses the material; a support point, point load or `[[monitor]]` outside the
   ///         material; a body that nothing holds in a static analysis (naming its material).
-  explicit CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase = {});
+  /// @param strength_factor  every joint's and [contact]'s strength divided by it
+  ///                         (reduced_strength(); `nmm fos`), > 0; 1: the case's own.
+  explicit CaseAnalysis(CaseSpec spec,
+                        const PhaseCallback& on_phase = {},
+                        double strength_factor = 1.0);
   ~CaseAnalysis();
   CaseAnalysis(const CaseAnalysis&) = delete;
   CaseAnalysis& operator=(const CaseAnalysis&) = delete;
@@ -106,6 +110,7 @@ private:
   void add_unused_curve_warnings();
 
   CaseSpec spec_;
+  double strength_factor_ = 1.0;
   CaseGeometry geometry_;
   Model model_;
   std::vector<Point2> monitor_starts_;

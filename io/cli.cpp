@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// io/cli.cpp — the `nmm` command: run, mesh, check, demo. The only place that catches
+// io/cli.cpp — the `nmm` command: run, mesh, check, fos, demo. The only place that catches
 // everything and exits (exit codes: 0 ok, 2 input error, 3 numerical failure, 4 internal
 // error, 130 interrupted).
 #include "io/atomic_file.hpp"
@@ -10,6 +10,7 @@
 #include "io/cover_warnings.hpp"
 #include "io/demo.hpp"
 #include "io/dependency_info.hpp"
+#include "io/fos.hpp"
 #include "io/progress.hpp"
 #include "io/text.hpp"
 #include "mesh/error.hpp"
@@ -196,6 +197,34 @@ int mesh_command(const std::string& case_file, const std::string& output) {
   return exit_ok;
 }
 
+int fos_command(const std::string& case_file, const std::string& output) {
+  const nmm::CaseSpec spec = nmm::read_case_file(case_file);
+  nmm::require_strength(spec); // before anything is written
+  nmm::ProgressPrinter printer(std::cerr, nmm::ProgressMode::lines);
+  for (const std::string& warning : spec.warnings)
+    printer.warning(warning);
+  const fs::path dir = output.empty() ? spec.output.dir : fs::path(output);
+  printer.phase("strength reduction: " + std::to_string(spec.fos.steps) +
+                " static steps a trial, bracket [" + nmm::number_text(spec.fos.bracket_low) + ", " +
+                nmm::number_text(spec.fos.bracket_high) + "], tolerance " +
+                nmm::number_text(spec.fos.tolerance));
+  nmm::FosOptions options;
+  options.on_trial = [&](const nmm::FosTrial& trial) {
+    printer.phase("F = " + nmm::number_text(trial.factor, 6) + ": " +
+                  (trial.failed ? "fails" : "stands") + " (last/first step displacement " +
+                  nmm::number_text(trial.measure, 3) + ", last " +
+                  nmm::number_text(trial.last_displacement, 3) + " m)" +
+                  (trial.error.empty() ? std::string() : ": " + trial.error));
+  };
+  const nmm::FosResult result = nmm::find_factor_of_safety(spec, options);
+  printer.finish();
+  nmm::create_output_dir(dir);
+  nmm::write_fos_json(dir / "fos.json", spec, result);
+  std::cout << nmm::fos_result_line(result) << '\n'
+            << "  output:   " << (dir / "fos.json").string() << '\n';
+  return exit_ok;
+}
+
 const char* plural(long n) { return n == 1 ? "" : "s"; }
 
 int check_command(const std::string& case_file) {
@@ -263,6 +292,7 @@ int run(int argc, char** argv) {
       "  nmm run slope.toml --restart out continue the run in out/ from its last checkpoint\n"
       "  nmm mesh slope.toml -o mesh      write mesh.vtu, math_mesh.vtu, boundary.vtp only\n"
       "  nmm check slope.toml             read and check the case and its geometry, run nothing\n"
+      "  nmm fos slope.toml -o fos        factor of safety by strength reduction: fos/fos.json\n"
       "  nmm demo                         print Shi's simplex-integration tables\n"
       "  nmm --version                    versions of nmm and every library it uses\n"
       "\n"
@@ -298,6 +328,14 @@ int run(int argc, char** argv) {
       "check", "Read the case and its geometry, resolve every name, build the covers; run nothing");
   check_cmd->add_option("case", check_case, "The case file (TOML)")->required();
 
+  std::string fos_case;
+  std::string fos_output;
+  CLI::App* fos_cmd = app.add_subcommand(
+      "fos", "Factor of safety by strength reduction of the joints ([fos] table): fos.json");
+  fos_cmd->add_option("case", fos_case, "The case file (TOML)")->required();
+  fos_cmd->add_option("-o,--output", fos_output,
+                      "Output folder (default: [output] dir of the case, relative to it)");
+
   CLI::App* demo = app.add_subcommand("demo", "Print Shi's simplex-integration tables");
   app.require_subcommand(0, 1);
 
@@ -316,6 +354,8 @@ int run(int argc, char** argv) {
     return mesh_command(mesh_case, mesh_output);
   if (check_cmd->parsed())
     return check_command(check_case);
+  if (fos_cmd->parsed())
+    return fos_command(fos_case, fos_output);
   RunArguments example;
   example.case_file = bundled_example().string();
   example.output = "out";
