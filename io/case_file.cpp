@@ -2,6 +2,7 @@
 #include "io/case_file.hpp"
 
 #include "io/case_table.hpp"
+#include "io/in_situ_table.hpp"
 #include "io/text.hpp"
 #include "mesh/error.hpp"
 
@@ -47,7 +48,8 @@ using namespace case_table;
 constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geometry_time_limit",
                                                "cover_mesh", "materials", "joints",
                                                "contact",    "boundary",  "load",
-                                               "analysis",   "monitor",   "output"};
+                                               "analysis",   "monitor",   "output",
+                                               "in_situ"};
 constexpr std::string_view cover_mesh_keys[] = {
     "kind",          "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance",
     "geometry_sizes"};
@@ -86,7 +88,7 @@ constexpr std::string_view analysis_keys[] = {"kind",
 constexpr std::string_view monitor_keys[] = {"name", "point"};
 constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every", "moved_threshold"};
 
-constexpr std::array<TableKeys, 10> all_tables{{{top_level_name, top_level_keys},
+constexpr std::array<TableKeys, 11> all_tables{{{top_level_name, top_level_keys},
                                                 {"[cover_mesh]", cover_mesh_keys},
                                                 {"[materials.NAME]", material_keys},
                                                 {"[joints.NAME]", joint_keys},
@@ -95,7 +97,8 @@ constexpr std::array<TableKeys, 10> all_tables{{{top_level_name, top_level_keys}
                                                 {"[[load]]", load_keys},
                                                 {"[analysis]", analysis_keys},
                                                 {"[[monitor]]", monitor_keys},
-                                                {"[output]", output_keys}}};
+                                                {"[output]", output_keys},
+                                                {"[in_situ]", in_situ_keys}}};
 
 constexpr std::string_view cover_mesh_kinds[] = {"regular", "gmsh"};
 constexpr std::string_view material_models[] = {"nmm", "dda", "vem"};
@@ -695,6 +698,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
   spec.output = read_output(context, root, file);
 
   check_whole_case(context, root, spec, materials, monitor_name_positions);
+  read_in_situ(context, root, spec); // (after the materials' and loads' own checks)
   spec.warnings = context.take_warnings();
   return spec;
 }

@@ -296,18 +296,18 @@ void refuse_values_beyond_the_model(const CaseSpec& spec, const BoundingBox& box
     // An [in_situ] field, linear in y, is largest at the model's top or bottom.
     if (!m.initial_stress_gradient.isZero() && !box.is_empty()) {
       for (const double y : {box.min.y(), box.max.y()})
-        stress = std::max(stress, (m.initial_stress + m.initial_stress_gradient *
-                                                          (m.initial_stress_surface - y))
-                                      .cwiseAbs()
-                                      .maxCoeff());
+        stress = std::max(
+            stress, (m.initial_stress + m.initial_stress_gradient * (m.initial_stress_surface - y))
+                        .cwiseAbs()
+                        .maxCoeff());
     }
     if (stress / m.young > largest_strain)
       fail(spec, spec.in_situ ? spec.in_situ->line : m.line,
            (spec.in_situ ? "[in_situ] stress in material " + in_quotes(m.name)
                          : "[materials." + m.name + "] initial_stress") +
-               " of " + number_text(stress) +
-               " Pa is a strain of " + number_text(stress / m.young) + " against its " +
-               "Young's modulus " + number_text(m.young) + " Pa" + not_finite_in_model_units("Pa"));
+               " of " + number_text(stress) + " Pa is a strain of " +
+               number_text(stress / m.young) + " against its " + "Young's modulus " +
+               number_text(m.young) + " Pa" + not_finite_in_model_units("Pa"));
     if (!dynamic || !(m.density > 0.0))
       continue; // a static analysis discards initial velocities
     // A body moving at v strains what it hits by v / c (c the wave speed, sqrt(E / rho)).

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <utility>
 
 namespace nmm::case_table {
 namespace {
@@ -60,8 +61,8 @@ void read_form(const TableView& view, InSituSpec& in_situ) {
     for (std::size_t i = 0; i < 3; ++i) {
       in_situ.stress(static_cast<Eigen::Index>(i)) =
           view.number_or(component_keys[i], 0.0, "Pa, tension positive", "-1.0e6");
-      in_situ.gradient(static_cast<Eigen::Index>(i)) = view.number_or(
-          gradient_keys[i], 0.0, "Pa per m of depth, tension positive", "-25000.0");
+      in_situ.gradient(static_cast<Eigen::Index>(i)) =
+          view.number_or(gradient_keys[i], 0.0, "Pa per m of depth, tension positive", "-25000.0");
     }
   }
   if (in_situ.unit_weight && !(*in_situ.unit_weight > 0.0))
@@ -103,9 +104,10 @@ void warn_about_gravity(Context& context, const CaseSpec& spec, const InSituSpec
                               "until the ramp ends; remove the ramp");
   }
   if (in_situ.k0 && !in_situ.unit_weight) {
-    const auto other = std::find_if(
-        spec.materials.begin(), spec.materials.end(),
-        [&](const MaterialSpec& m) { return m.density != spec.materials.front().density; });
+    const auto other =
+        std::find_if(spec.materials.begin(), spec.materials.end(), [&](const MaterialSpec& m) {
+          return m.density != spec.materials.front().density;
+        });
     if (other != spec.materials.end())
       context.warn(in_situ.line,
                    "[in_situ] without unit_weight gives each material its own density x |g| "
@@ -142,8 +144,7 @@ void read_in_situ(Context& context, const toml::table& root, CaseSpec& spec) {
   for (const MaterialSpec& m : spec.materials) {
     if (!m.initial_stress.isZero())
       view.fail_at_key(view.has("k0") ? "k0" : first_component(view),
-                       "[materials." + m.name + "] initial_stress (line " +
-                           std::to_string(m.line) +
+                       "[materials." + m.name + "] initial_stress (line " + std::to_string(m.line) +
                            ") and [in_situ] both give the initial stress, and [in_situ] "
                            "applies to every material; remove one of them");
   }

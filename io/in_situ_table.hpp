@@ -14,9 +14,9 @@
 namespace nmm::case_table {
 
 /// The keys `[in_situ]` accepts (the schema of io/case_file.cpp).
-inline constexpr std::string_view in_situ_keys[] = {
-    "surface", "unit_weight",  "k0",           "sxx",         "syy",
-    "sxy",     "sxx_gradient", "syy_gradient", "sxy_gradient"};
+inline constexpr std::string_view in_situ_keys[] = {"surface",      "unit_weight",  "k0",
+                                                    "sxx",          "syy",          "sxy",
+                                                    "sxx_gradient", "syy_gradient", "sxy_gradient"};
 
 /// Reads `[in_situ]`, when the case file has one, into spec.in_situ and gives every material
 /// its field (MaterialSpec::initial_stress at the surface, initial_stress_gradient,

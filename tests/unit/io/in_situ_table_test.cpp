@@ -37,16 +37,14 @@ TEST(InSituTable, K0TakesEachMaterialsDensityTimesGravity) {
   EXPECT_EQ(spec.materials[1].initial_stress_surface, 20.0);
   // Two densities, one default unit weight each: not in equilibrium across their interface.
   ASSERT_EQ(spec.warnings.size(), 1u);
-  EXPECT_NE(spec.warnings[0].find("gives each material its own density x |g|"),
-            std::string::npos)
+  EXPECT_NE(spec.warnings[0].find("gives each material its own density x |g|"), std::string::npos)
       << spec.warnings[0];
 }
 
 TEST(InSituTable, AGivenUnitWeightIsOneFieldForEveryMaterialWithoutGravity) {
-  const CaseSpec spec =
-      parse_case_text(head + rock + soil + analysis +
-                          "[in_situ]\nsurface = -5\nk0 = 1.5\nunit_weight = 20000\n",
-                      "c.toml");
+  const CaseSpec spec = parse_case_text(
+      head + rock + soil + analysis + "[in_situ]\nsurface = -5\nk0 = 1.5\nunit_weight = 20000\n",
+      "c.toml");
   for (const MaterialSpec& m : spec.materials) {
     EXPECT_EQ(m.initial_stress_gradient, Eigen::Vector3d(-30000.0, -20000.0, 0.0));
     EXPECT_EQ(m.initial_stress_surface, -5.0);
@@ -89,8 +87,7 @@ TEST(InSituTable, ARampedOrTurnedGravityIsNotInEquilibriumWithTheField) {
   const CaseSpec turned = parse_case_text(
       head + rock + "[[load]]\ngravity = [1.0, -9.81]\n" + analysis + table, "c.toml");
   ASSERT_EQ(turned.warnings.size(), 1u);
-  EXPECT_NE(turned.warnings[0].find("the field is not in equilibrium with it"),
-            std::string::npos);
+  EXPECT_NE(turned.warnings[0].find("the field is not in equilibrium with it"), std::string::npos);
 }
 
 // ---- malformed input: each text must fail on the line marked "# <-" ----
