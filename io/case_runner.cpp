@@ -216,6 +216,20 @@ std::string not_finite_in_model_units(std::string_view unit) {
          std::string(unit) + ", SI)";
 }
 
+/// The largest component of a material's initial stress in the model's box: an [in_situ]
+/// field, linear in y, is largest at the box's top or bottom.
+double largest_initial_stress(const MaterialSpec& m, const BoundingBox& box) {
+  double stress = m.initial_stress.cwiseAbs().maxCoeff();
+  if (!m.initial_stress_gradient.isZero() && !box.is_empty()) {
+    for (const double y : {box.min.y(), box.max.y()})
+      stress = std::max(
+          stress, (m.initial_stress + m.initial_stress_gradient * (m.initial_stress_surface - y))
+                      .cwiseAbs()
+                      .maxCoeff());
+  }
+  return stress;
+}
+
 /// Refuses loads and initial states that the model cannot represent: each is turned into the
 /// strain it gives the model of size @p size (m), against Young's modulus of the material
 /// it acts on (the largest one when it acts on all), and must stay below largest_strain. The
@@ -292,15 +306,7 @@ void refuse_values_beyond_the_model(const CaseSpec& spec, const BoundingBox& box
   }
   const bool dynamic = spec.analysis.kind == AnalysisKind::dynamic;
   for (const MaterialSpec& m : spec.materials) {
-    double stress = m.initial_stress.cwiseAbs().maxCoeff();
-    // An [in_situ] field, linear in y, is largest at the model's top or bottom.
-    if (!m.initial_stress_gradient.isZero() && !box.is_empty()) {
-      for (const double y : {box.min.y(), box.max.y()})
-        stress = std::max(
-            stress, (m.initial_stress + m.initial_stress_gradient * (m.initial_stress_surface - y))
-                        .cwiseAbs()
-                        .maxCoeff());
-    }
+    const double stress = largest_initial_stress(m, box);
     if (stress / m.young > largest_strain)
       fail(spec, spec.in_situ ? spec.in_situ->line : m.line,
            (spec.in_situ ? "[in_situ] stress in material " + in_quotes(m.name)
