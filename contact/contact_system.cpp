@@ -114,7 +114,8 @@ void ContactSystem::set_up_boundary(const Model& model) {
   edge_strength_.clear();
   edge_bonded_.clear();
   edge_joint_.clear();
-  edge_stress_.clear();
+  edge_material_.clear();
+  materials_ = model.materials;
   for (std::size_t l = 0; l < model.loops.size(); ++l) {
     const BoundaryLoop& loop = model.loops[l];
     for (int k = 0; k < loop.n_vertices(); ++k) {
@@ -123,25 +124,29 @@ void ContactSystem::set_up_boundary(const Model& model) {
       edge_strength_.push_back(law_->surface(l, at(k)));
       edge_bonded_.push_back(law_->is_bonded(l, at(k)) ? 1 : 0);
       edge_joint_.push_back(edge.joint);
-      edge_stress_.push_back(
-          edge.element >= 0
-              ? model.materials[at(model.elements[at(edge.element)].material)].initial_stress
-              : Eigen::Vector3d::Zero());
+      edge_material_.push_back(edge.element >= 0 ? model.elements[at(edge.element)].material : -1);
     }
   }
 }
 
-Point2 ContactSystem::in_situ_traction(int slave, int slave_other, int master) const {
+Eigen::Vector3d ContactSystem::initial_stress_at(int edge, const Point2& x) const {
+  const int material = edge_material_[at(edge)];
+  return material < 0 ? Eigen::Vector3d::Zero() : materials_[at(material)].initial_stress_at(x.y());
+}
+
+Point2
+ContactSystem::in_situ_traction(int slave, int slave_other, int master, const Point2& x) const {
   // The initial stress sigma0 is in equilibrium inside each body; across a joint the two
   // faces press on each other with its traction sigma0 n. Each body's initial-stress load
   // -integral B^T sigma0 (Shi 1997, eq. 2.10) is, by the divergence theorem, that traction on
   // its boundary pushing outwards; the joint's springs carry it from the start, or the
   // bodies expand into each other until their penetration does (docs/formulation.md,
-  // "In-situ stress"). The two sides' stresses, averaged (the same where one rock is cut).
+  // "In-situ stress"). The two sides' stresses at the contact point x, averaged (the same
+  // where one rock is cut); a field growing with depth ([in_situ]) is taken at x's height.
   const int joint = edge_joint_[at(master)];
   if (joint < 0 || edge_joint_[at(slave)] != joint || edge_joint_[at(slave_other)] != joint)
     return Point2::Zero();
-  const Eigen::Vector3d s = 0.5 * (edge_stress_[at(slave)] + edge_stress_[at(master)]);
+  const Eigen::Vector3d s = 0.5 * (initial_stress_at(slave, x) + initial_stress_at(master, x));
   if (s.isZero())
     return Point2::Zero();
   const Point2& a = boundary_.position[at(master)];
@@ -235,12 +240,13 @@ void ContactSystem::add_angle_point(const ContactCandidate& c,
                  : edge_bonded_[at(v)] != 0 && edge_bonded_[at(p.master)] != 0;
   // Across a joint under initial stress, the springs pre-compressed and pre-sheared to carry
   // the in-situ traction on the point's length (none for a corner of no length).
-  const Point2 traction = in_situ_traction(v, boundary_.previous[at(v)], p.master);
+  const Point2 traction = in_situ_traction(v, boundary_.previous[at(v)], p.master, p.slave);
   // A tensile initial stress pre-loads only a bond (an unbonded joint carries no tension).
   p.shift = p.bonded ? traction.x() * p.length / p.stiffness
                      : std::max(0.0, traction.x() * p.length / p.stiffness);
   g.in_situ_shear = traction.y() * p.length / p.stiffness;
   g.count = 1;
+  g.in_situ_shift = {p.shift, p.shift};
   points_.push_back(p);
   g0.push_back((p.slave - ma).dot(normal));
 }
@@ -270,14 +276,13 @@ bool ContactSystem::add_edge_points(const ContactCandidate& c,
   p.strength = law_->contact_strength(edge_strength_[at(c.slave)], edge_strength_[at(c.master)]);
   p.bonded = edge_bonded_[at(c.slave)] != 0 && edge_bonded_[at(c.master)] != 0;
   p.shear_ratio = edge_shear_ratio(p.strength);
-  // The pre-compression and pre-shear of the in-situ traction (as for an angle point): the
-  // springs' stiffness per unit length is edge_stiffness(), the same at every point.
-  const Point2 traction = in_situ_traction(c.slave, c.slave, c.master);
-  const double compliance = p.strength.normal_stiffness > 0.0
-                                ? 1.0 / p.strength.normal_stiffness
-                                : options_.spring_length / options_.penalty;
-  p.shift = p.bonded ? traction.x() * compliance : std::max(0.0, traction.x() * compliance);
-  g.in_situ_shear = traction.y() * compliance / p.shear_ratio;
+  // The pre-compression of the in-situ traction at the overlap's ends, for the test whether
+  // the pair touches; each point's own is set where place() puts it (start_contact()).
+  for (int end = 0; end < 2; ++end) {
+    ContactPoint at_end = p;
+    at_end.slave = a + (end == 0 ? g.lo : g.hi) * (d - a);
+    g.in_situ_shift[at(end)] = edge_preload(at_end, p.bonded).first;
+  }
   g.count = gauss_;
   for (int q = 0; q < gauss_; ++q) {
     points_.push_back(p);
@@ -287,12 +292,26 @@ bool ContactSystem::add_edge_points(const ContactCandidate& c,
   return true;
 }
 
+std::pair<double, double> ContactSystem::edge_preload(const ContactPoint& p, bool bonded) const {
+  // The pre-compression and pre-shear of the in-situ traction at the point (as for an angle
+  // point): the springs' stiffness per unit length is edge_stiffness(), the same at every
+  // point, so each Gauss point carries the traction at its own place and the pair the
+  // traction's integral along it (exact for a field linear in depth).
+  const Point2 traction = in_situ_traction(p.slave_edge, p.slave_edge, p.master, p.slave);
+  const double compliance = p.strength.normal_stiffness > 0.0
+                                ? 1.0 / p.strength.normal_stiffness
+                                : options_.spring_length / options_.penalty;
+  return {bonded ? traction.x() * compliance : std::max(0.0, traction.x() * compliance),
+          traction.y() * compliance / p.shear_ratio};
+}
+
 void ContactSystem::start_contact(Group& g,
                                   const ContactPoint& p,
                                   const CarriedByEdge& carried,
                                   const std::vector<double>& g0,
                                   std::vector<std::pair<double, double>>& offsets) {
   ContactPoint& lead = points_[at(g.first)];
+  const bool preload_bonded = lead.bonded; // (the in-situ pre-load as the pair was made)
   if (broken_.count(g.key) != 0 || broken_.count(interface_key(p.slave_edge, p.master)) != 0) {
     for (int q = 0; q < g.count; ++q)
       points_[at(g.first + q)].bonded = false;
@@ -308,9 +327,12 @@ void ContactSystem::start_contact(Group& g,
   // step at 40 E, and 96 step cuts in 200 steps at 100 E (2 now).
   bool same = false;
   const Carried* state = carried_state(carried, g.key, p.slave_edge, p.master, g.edge, &same);
-  // Gaps as the springs see them: less an in-situ pre-compression (ContactPoint::shift).
-  const double pre = lead.shift;
-  const bool touching = *std::min_element(g0.begin(), g0.end()) - pre <= rounding_;
+  // Gaps as the springs see them: less an in-situ pre-compression (ContactPoint::shift; for
+  // an edge pair at each end of its overlap).
+  const double pre = g.in_situ_shift[0];
+  const bool touching =
+      g.edge ? std::min(g0[0] - g.in_situ_shift[0], g0[1] - g.in_situ_shift[1]) <= rounding_
+             : g0.front() - pre <= rounding_;
   ContactMode mode = ContactMode::open;
   int sign = 0;
   double normal_force = 0.0;
@@ -353,11 +375,10 @@ void ContactSystem::start_contact(Group& g,
   // A new contact across a joint under initial stress anchors its shear springs the
   // in-situ pre-shear behind its slave points (Group::in_situ_shear), a carried one keeps
   // its anchors.
-  const double pre_shear =
-      same ? 0.0
-           : g.in_situ_shear / (boundary_.position[at(boundary_.next[at(p.master)])] -
-                                boundary_.position[at(p.master)])
-                                   .norm();
+  const double master_length =
+      (boundary_.position[at(boundary_.next[at(p.master)])] - boundary_.position[at(p.master)])
+          .norm();
+  const double pre_shear = same ? 0.0 : g.in_situ_shear / master_length;
   auto anchor_of = [&](double u, const Point2& slave) {
     return projection(p.master, slave) + (same ? offset_at(offsets, u) : -pre_shear);
   };
@@ -367,16 +388,20 @@ void ContactSystem::start_contact(Group& g,
     double to = g.hi;
     if (closed(mode) && !lead.bonded) {
       NMM_ASSERT(g0.size() == 2, "an edge pair's gaps at the ends of its overlap");
-      const std::array<double, 2> pressed{g0[0] - pre, g0[1] - pre};
+      const std::array<double, 2> pressed{g0[0] - g.in_situ_shift[0], g0[1] - g.in_situ_shift[1]};
       if (const OverlapPart part = GapProfile(g.lo, g.hi, pressed).negative(); part.found) {
         from = part.from;
         to = part.to;
       }
     }
     place(g, from, to, same ? &offsets : nullptr);
-    if (!same) {
-      for (int q = 0; q < g.count; ++q)
-        points_[at(g.first + q)].anchor -= pre_shear;
+    // Each spring pre-compressed and (new) pre-sheared by the traction at its own place.
+    for (int q = 0; q < g.count; ++q) {
+      ContactPoint& point = points_[at(g.first + q)];
+      const auto [shift, shear] = edge_preload(point, preload_bonded);
+      point.shift = shift;
+      if (!same)
+        point.anchor -= shear / master_length;
     }
   } else {
     lead.anchor = anchor_of(0.0, lead.slave);

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -358,10 +359,14 @@ private:
     /// its ends search (LiftOffEnd), for ContactOptions::lift_off_searches moves at most.
     bool searching = false;
     int searches = 0;
-    /// The shear springs' pre-shear of an in-situ contact (in_situ_traction()), m: its
-    /// points' anchors sit this far behind their slave points along the master when the
-    /// contact locks new.
+    /// The shear springs' pre-shear of an in-situ angle contact (in_situ_traction()), m: its
+    /// point's anchor sits this far behind its slave point along the master when the contact
+    /// locks new (an edge pair's points each take the traction at their own place:
+    /// edge_preload()).
     double in_situ_shear = 0.0;
+    /// The in-situ pre-compression (ContactPoint::shift) at the two ends of an edge pair's
+    /// overlap (lo, hi), and an angle contact's (both the same), m: whether it touches.
+    std::array<double, 2> in_situ_shift{};
     /// Ends the search (its brackets hold for this overlap and these springs only).
     void stop_search() noexcept {
       searching = false;
@@ -517,7 +522,14 @@ private:
   /// their stiffness per unit length: t.sigma0 n), Pa. Zero unless every slave edge and the master
   /// are faces of one joint curve: the joints the initial stress acts across (docs/formulation.md,
   /// "In-situ stress").
-  [[nodiscard]] Point2 in_situ_traction(int slave, int slave_other, int master) const;
+  [[nodiscard]] Point2
+  in_situ_traction(int slave, int slave_other, int master, const Point2& x) const;
+  /// The initial stress of edge @p edge's material at @p x (zero for an edge of no element).
+  [[nodiscard]] Eigen::Vector3d initial_stress_at(int edge, const Point2& x) const;
+  /// An edge pair's spring @p p at its slave point: its in-situ pre-compression
+  /// (ContactPoint::shift; a tensile one only when @p bonded) and pre-shear (the shear
+  /// springs' stretch, m) for the traction there.
+  [[nodiscard]] std::pair<double, double> edge_preload(const ContactPoint& p, bool bonded) const;
   /// Puts the spring of angle-to-angle candidate @p c on the entrance line with the smaller
   /// passing distance (Shi 3.2 [1]): @p p's slave and master.
   void choose_entrance_line(const ContactCandidate& c, ContactPoint& p) const;
@@ -638,10 +650,12 @@ private:
   std::vector<int> edge_element_;
   std::vector<JointStrength> edge_strength_;
   std::vector<char> edge_bonded_;
-  /// Per boundary edge: the joint curve it is a face of (BoundaryEdge::joint) and the initial
-  /// stress of its material (sxx, syy, sxy).
+  /// Per boundary edge: the joint curve it is a face of (BoundaryEdge::joint) and its
+  /// element's material (-1: none), whose initial stress the joint's springs carry.
   std::vector<int> edge_joint_;
-  std::vector<Eigen::Vector3d> edge_stress_;
+  std::vector<int> edge_material_;
+  /// The model's materials (their initial stress fields), as of the step's start.
+  std::vector<ElasticMaterial> materials_;
   /// Shapes of the elements the contact points' edges belong to, built once per step (the
   /// geometry stays put through a step; a VEM block's shape computes its projector), and
   /// each element's index into them (-1: none).

@@ -3,6 +3,7 @@
 
 #include "io/case_table.hpp"
 #include "io/fos_table.hpp"
+#include "io/in_situ_table.hpp"
 #include "io/joint_set_table.hpp"
 #include "io/text.hpp"
 #include "mesh/error.hpp"
@@ -49,7 +50,7 @@ constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geome
                                                "cover_mesh", "materials", "joints",
                                                "contact",    "boundary",  "load",
                                                "analysis",   "monitor",   "output",
-                                               "joint_set",  "fos"};
+                                               "joint_set",  "fos",       "in_situ"};
 constexpr std::string_view cover_mesh_keys[] = {
     "kind",          "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance",
     "geometry_sizes"};
@@ -96,6 +97,7 @@ constexpr TableKeys all_tables[] = {
     {"[[boundary]]", boundary_keys},     {"[[load]]", load_keys},
     {"[analysis]", analysis_keys},       {"[[monitor]]", monitor_keys},
     {"[output]", output_keys},           {"[fos]", fos_keys},
+    {"[in_situ]", in_situ_keys},
 };
 
 constexpr std::string_view cover_mesh_kinds[] = {"regular", "gmsh"};
@@ -706,6 +708,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
   spec.fos = read_fos_table(context, root);
 
   check_whole_case(context, root, spec, materials, monitor_name_positions);
+  read_in_situ(context, root, spec); // (after the materials' and loads' own checks)
   spec.warnings = context.take_warnings();
   return spec;
 }

@@ -91,8 +91,13 @@ struct MaterialSpec {
   Eigen::Vector2d initial_velocity = Eigen::Vector2d::Zero();
   /// Initial angular velocity (rad/s, counter-clockwise) of each block about its centroid.
   double initial_angular_velocity = 0.0;
-  /// Initial stress (Pa) as (sxx, syy, sxy); tension positive.
+  /// Initial stress (Pa) as (sxx, syy, sxy); tension positive. With `[in_situ]`: the field's
+  /// stress at the surface (ElasticMaterial::initial_stress).
   Eigen::Vector3d initial_stress = Eigen::Vector3d::Zero();
+  /// With `[in_situ]`: the field's growth per metre of depth (Pa/m) and the surface's y (m)
+  /// (ElasticMaterial::initial_stress_gradient, initial_stress_surface); else zero.
+  Eigen::Vector3d initial_stress_gradient = Eigen::Vector3d::Zero();
+  double initial_stress_surface = 0.0;
   /// `exact_rotation`: an `nmm` or `vem` region's blocks turn by each step's rotation exactly
   /// (ElasticMaterial::exact_rotation). `dda` regions do not take it (they always do).
   bool exact_rotation = false;
@@ -228,6 +233,24 @@ struct MonitorSpec {
   int line = 0;
 };
 
+/// `[in_situ]`: an initial stress growing with depth below a ground surface, given to every
+/// material: sigma(y) = stress + gradient (surface - y), or with k0 syy = -unit_weight
+/// (surface - y), sxx = k0 syy, sxy = 0 (docs/case-file.md, "[in_situ]").
+struct InSituSpec {
+  /// Line of the `[in_situ]` header in the case file.
+  int line = 0;
+  /// The y coordinate of the ground surface, m.
+  double surface = 0.0;
+  /// Horizontal over vertical stress, >= 0; empty: the components form.
+  std::optional<double> k0;
+  /// N/m^3, > 0 (k0 form only); empty: each material's density x |g| of the gravity loads.
+  std::optional<double> unit_weight;
+  /// Components form: sxx, syy, sxy at the surface (Pa) and their growth per metre of depth
+  /// (Pa/m); tension positive.
+  Eigen::Vector3d stress = Eigen::Vector3d::Zero();
+  Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+};
+
 /// `[output]`.
 struct OutputSpec {
   /// Output folder, resolved against the case file's folder.
@@ -271,6 +294,8 @@ struct CaseSpec {
   OutputSpec output;
   /// `[fos]`: the strength reduction of `nmm fos` (defaults when absent).
   FosSpec fos;
+  /// `[in_situ]`, when the case has one (its field is in every MaterialSpec already).
+  std::optional<InSituSpec> in_situ;
   /// Non-fatal remarks, each "file:line: what; why it may matter".
   std::vector<std::string> warnings;
 

@@ -100,6 +100,8 @@ ElasticMaterial elastic_material(const MaterialSpec& spec) {
   m.plane = spec.plane;
   m.thickness = spec.thickness;
   m.initial_stress = spec.initial_stress;
+  m.initial_stress_gradient = spec.initial_stress_gradient;
+  m.initial_stress_surface = spec.initial_stress_surface;
   m.exact_rotation = spec.exact_rotation;
   return m;
 }
@@ -216,6 +218,20 @@ std::string not_finite_in_model_units(std::string_view unit) {
          std::string(unit) + ", SI)";
 }
 
+/// The largest component of a material's initial stress in the model's box: an [in_situ]
+/// field, linear in y, is largest at the box's top or bottom.
+double largest_initial_stress(const MaterialSpec& m, const BoundingBox& box) {
+  double stress = m.initial_stress.cwiseAbs().maxCoeff();
+  if (!m.initial_stress_gradient.isZero() && !box.is_empty()) {
+    for (const double y : {box.min.y(), box.max.y()})
+      stress = std::max(
+          stress, (m.initial_stress + m.initial_stress_gradient * (m.initial_stress_surface - y))
+                      .cwiseAbs()
+                      .maxCoeff());
+  }
+  return stress;
+}
+
 /// Refuses loads and initial states that the model cannot represent: each is turned into the
 /// strain it gives the model of size @p size (m), against Young's modulus of the material
 /// it acts on (the largest one when it acts on all), and must stay below largest_strain. The
@@ -292,12 +308,14 @@ void refuse_values_beyond_the_model(const CaseSpec& spec, const BoundingBox& box
   }
   const bool dynamic = spec.analysis.kind == AnalysisKind::dynamic;
   for (const MaterialSpec& m : spec.materials) {
-    const double stress = m.initial_stress.cwiseAbs().maxCoeff();
+    const double stress = largest_initial_stress(m, box);
     if (stress / m.young > largest_strain)
-      fail(spec, m.line,
-           "[materials." + m.name + "] initial_stress of " + number_text(stress) +
-               " Pa is a strain of " + number_text(stress / m.young) + " against its " +
-               "Young's modulus " + number_text(m.young) + " Pa" + not_finite_in_model_units("Pa"));
+      fail(spec, spec.in_situ ? spec.in_situ->line : m.line,
+           (spec.in_situ ? "[in_situ] stress in material " + in_quotes(m.name)
+                         : "[materials." + m.name + "] initial_stress") +
+               " of " + number_text(stress) + " Pa is a strain of " +
+               number_text(stress / m.young) + " against its " + "Young's modulus " +
+               number_text(m.young) + " Pa" + not_finite_in_model_units("Pa"));
     if (!dynamic || !(m.density > 0.0))
       continue; // a static analysis discards initial velocities
     // A body moving at v strains what it hits by v / c (c the wave speed, sqrt(E / rho)).

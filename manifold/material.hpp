@@ -20,13 +20,28 @@ struct ElasticMaterial {
   double density = 0.0; ///< kg/m³, >= 0 (0 only in static analyses without gravity)
   PlaneCondition plane = PlaneCondition::strain;
   double thickness = 1.0; ///< m; plane stress only (plane strain is per metre)
-  /// Stress at the start of the analysis (sxx, syy, sxy), Pa, e.g. an in-situ stress.
+  /// Stress at the start of the analysis (sxx, syy, sxy), Pa, e.g. an in-situ stress: at the
+  /// height initial_stress_surface, and everywhere when initial_stress_gradient is zero.
   Eigen::Vector3d initial_stress = Eigen::Vector3d::Zero();
+  /// Growth of the initial stress per metre of depth below initial_stress_surface, Pa/m
+  /// (sxx, syy, sxy; compression negative): the case file's `[in_situ]` field,
+  /// sigma(y) = initial_stress + initial_stress_gradient (initial_stress_surface - y).
+  /// Zero (the default): the initial stress is uniform.
+  Eigen::Vector3d initial_stress_gradient = Eigen::Vector3d::Zero();
+  /// The height (a y coordinate, m) at which the initial stress is `initial_stress`.
+  double initial_stress_surface = 0.0;
   /// NMM and VEM blocks: turn each block's geometry and velocities by the step's rotation
   /// exactly (Model::turn_exactly), as DDA blocks always do, instead of moving the covers or
   /// vertices by their linear displacement (which keeps a contact's penetration in the
   /// equations that of the moved geometry, but makes a spinning block grow). Off by default.
   bool exact_rotation = false;
+
+  /// The initial stress at the height @p y, Pa (exactly `initial_stress` when it is uniform).
+  [[nodiscard]] Eigen::Vector3d initial_stress_at(double y) const {
+    if (initial_stress_gradient.isZero())
+      return initial_stress;
+    return initial_stress + initial_stress_gradient * (initial_stress_surface - y);
+  }
 
   /// The factor every area integral is multiplied by: thickness for plane stress, 1 m for
   /// plane strain.

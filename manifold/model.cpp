@@ -484,6 +484,19 @@ void Model::set_rigid_motion(
 
 namespace {
 
+/// The material's initial stress as an element's stress field about @p origin: the constant
+/// part at the origin's height, the linear part -d sigma / d depth along y (an `[in_situ]`
+/// field growing with depth, ElasticMaterial::initial_stress_gradient). Exact in every
+/// element kind: each integrates the field's linear part in its initial-stress load.
+LinearField3 initial_stress_field(const ElasticMaterial& material, const Point2& origin) {
+  LinearField3 field;
+  field.origin = origin;
+  field.coefficients.col(0) = material.initial_stress_at(origin.y());
+  if (!material.initial_stress_gradient.isZero())
+    field.coefficients.col(2) = -material.initial_stress_gradient;
+  return field;
+}
+
 /// One DDA or VEM element per block of a special region (the blocks without NMM elements),
 /// with its cover(s); the block's loop edges and curve pieces point at it.
 void add_block_elements(Model& model, const std::vector<ElementKind>& region_kinds) {
@@ -551,14 +564,14 @@ void add_block_elements(Model& model, const std::vector<ElementKind>& region_kin
       for (const Loop& hole : polygon.holes)
         add_vertices(hole);
     }
-    element.stress.coefficients.col(0) = m.initial_stress;
     element_of_block[b] = model.n_elements();
     model.elements.push_back(std::move(element));
     model.blocks[b].elements.push_back(element_of_block[b]);
   }
   for (int e = 0; e < model.n_elements(); ++e) {
     if (model.elements[at(e)].kind != ElementKind::nmm)
-      model.elements[at(e)].stress.origin = model.element_origin(e);
+      model.elements[at(e)].stress =
+          initial_stress_field(model.material_of(e), model.element_origin(e));
   }
   for (BoundaryLoop& loop : model.loops) {
     const int e = element_of_block[at(loop.block)];
@@ -624,8 +637,7 @@ Model make_model(const CoverSystem& cover_system,
     Point2 centroid = Point2::Zero();
     for (const int c : e.covers)
       centroid += model.covers[at(c)].position / 3.0;
-    element.stress.origin = centroid;
-    element.stress.coefficients.col(0) = model.materials[at(e.material)].initial_stress;
+    element.stress = initial_stress_field(model.materials[at(e.material)], centroid);
     model.elements.push_back(std::move(element));
   }
   model.blocks = cover_system.blocks;

@@ -29,6 +29,10 @@ public:
   [[nodiscard]] int n_vertices() const noexcept { return static_cast<int>(vertices_.size()); }
   [[nodiscard]] int n_dofs() const noexcept { return 2 * n_vertices(); }
   [[nodiscard]] const std::vector<Point2>& vertices() const noexcept { return vertices_; }
+  /// The vertex after @p vertex along its loop (the block's edges are vertex -> next).
+  [[nodiscard]] int next(int vertex) const noexcept {
+    return next_[static_cast<std::size_t>(vertex)];
+  }
   /// x*: the mean of the vertices, origin of the projection (eq. 32).
   [[nodiscard]] const Point2& origin() const noexcept { return origin_; }
   /// Area S of the block.
@@ -93,7 +97,10 @@ public:
   [[nodiscard]] Eigen::MatrixXd mass(double density_thickness) const;
   /// H^T ∫ T*^T b (eq. 61-63).
   [[nodiscard]] Eigen::VectorXd body_force(const Point2& force, double thickness) const;
-  /// -S P_c^T sigma0 (eq. 60), sigma0 the mean of the stress field over the block.
+  /// -S P_c^T sigma0 (eq. 60), sigma0 the mean of the stress field over the block; for a
+  /// field with a linear part (an `[in_situ]` stress growing with depth) -∫ eps(v) : sigma
+  /// by parts instead: the boundary integral of v . sigma n exactly, the interior one of
+  /// v . div sigma through the projection, as the body force.
   [[nodiscard]] Eigen::VectorXd initial_stress_load(const LinearField3& stress,
                                                     double thickness) const;
   /// The load of a carried stabilisation force @p carried (2n vertex forces): -(I - P_u)^T
@@ -103,6 +110,10 @@ public:
   [[nodiscard]] Eigen::VectorXd stabilisation_load(const Eigen::VectorXd& carried) const;
 
 private:
+  /// initial_stress_load() of a stress field with a linear part.
+  [[nodiscard]] Eigen::VectorXd linear_stress_load(const LinearField3& stress,
+                                                   double thickness) const;
+
   const VemShape& shape_;
   /// I - P_u, (I - P_u)^T (I - P_u) and trace(P_u^T P_u) (eq. 49-50).
   Eigen::MatrixXd residual_;

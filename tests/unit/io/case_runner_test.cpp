@@ -613,6 +613,16 @@ TEST_F(CaseRunner, LoadsAndStatesBeyondTheModelAreRefusedNamingTheKeyAndItsLine)
       return parts;
     }());
   }
+  // An [in_situ] field, at the plate's bottom (y = 0): 1e6 Pa/m x 1e9 m of depth = 1e15 Pa.
+  const std::string deep =
+      std::string(plate_case) + "\n[in_situ]\nsurface = 1.0e9\nsyy_gradient = -1.0e6\n";
+  const int in_situ_line =
+      static_cast<int>(std::count(deep.begin(),
+                                  deep.begin() + static_cast<long>(deep.find("[in_situ]")), '\n')) +
+      1;
+  expect_all(error_of(deep), {case_prefix(dir(), in_situ_line),
+                              "[in_situ] stress in material \"rock\" of 1e+15 Pa is a strain of "
+                              "1e+06 against its Young's modulus"});
   // Velocities: an impact strains by v / c (c = sqrt(1e9 / 2000) = 707 m/s).
   const std::string moving = replaced(plate_case, "kind = \"static\"\nsteps = 3", dynamic);
   expect_all(error_of(replaced(moving, rock, rock + "\ninitial_velocity = [1.0e90, 0.0]")),
