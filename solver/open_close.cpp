@@ -196,14 +196,14 @@ OpenCloseIteration::OpenCloseIteration(const StepContext& context,
   if (context_.contact)
     result_.limit =
         open_close_limit(context_.options.open_close_max, 0, 0, context_.kind.equilibrium);
-  // An iterative solver's first guess: Shi's step displacement d = v dt + a dt^2 / 2 with
-  // the last step's acceleration (zero in static steps); then each open-close iteration
-  // starts from the last one's solution. At 10,004 DDA blocks falling from rest the guess
-  // with the acceleration takes 17.5 iterations a solve, without it (d = v dt) 41.
   // Contacts' modes are decided on solves to conjugate gradients' loose tolerance; the
   // solve after which no mode changes is repeated to their own, and judged again.
   if (context_.contact && context_.options.conjugate_gradients)
     loose_ = context_.solver.set_loose(true);
+  // An iterative solver's first guess: Shi's step displacement d = v dt + a dt^2 / 2 with
+  // the last step's acceleration (zero in static steps); then each open-close iteration
+  // starts from the last one's solution. At 10,004 DDA blocks falling from rest the guess
+  // with the acceleration takes 17.5 iterations a solve, without it (d = v dt) 41.
   if (context_.options.conjugate_gradients) {
     const DofMap& map = *system_.map;
     const double dt = tries_.dt;
