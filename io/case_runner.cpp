@@ -223,11 +223,9 @@ std::string not_finite_in_model_units(std::string_view unit) {
 double largest_initial_stress(const MaterialSpec& m, const BoundingBox& box) {
   double stress = m.initial_stress.cwiseAbs().maxCoeff();
   if (!m.initial_stress_gradient.isZero() && !box.is_empty()) {
+    const ElasticMaterial material = elastic_material(m);
     for (const double y : {box.min.y(), box.max.y()})
-      stress = std::max(
-          stress, (m.initial_stress + m.initial_stress_gradient * (m.initial_stress_surface - y))
-                      .cwiseAbs()
-                      .maxCoeff());
+      stress = std::max(stress, material.initial_stress_at(y).cwiseAbs().maxCoeff());
   }
   return stress;
 }
