@@ -312,7 +312,7 @@ void refuse_values_beyond_the_model(const CaseSpec& spec, const BoundingBox& box
            (spec.in_situ ? "[in_situ] stress in material " + in_quotes(m.name)
                          : "[materials." + m.name + "] initial_stress") +
                " of " + number_text(stress) + " Pa is a strain of " +
-               number_text(stress / m.young) + " against its " + "Young's modulus " +
+               number_text(stress / m.young) + " against its Young's modulus " +
                number_text(m.young) + " Pa" + not_finite_in_model_units("Pa"));
     if (!dynamic || !(m.density > 0.0))
       continue; // a static analysis discards initial velocities

@@ -217,6 +217,8 @@ int fos_command(const std::string& case_file, const std::string& output) {
                   (trial.error.empty() ? std::string() : ": " + trial.error));
   };
   const nmm::FosResult result = nmm::find_factor_of_safety(spec, options);
+  for (const std::string& warning : result.warnings)
+    printer.warning(warning);
   printer.finish();
   nmm::create_output_dir(dir);
   nmm::write_fos_json(dir / "fos.json", spec, result);

@@ -36,6 +36,35 @@ std::vector<int> failing_blocks(const std::vector<FosTrial>& trials) {
 /// The steps at each end of a trial that the criterion compares: a tenth of them.
 int window_of(int steps) { return std::max(1, steps / 10); }
 
+/// A model that fails keeps moving at the rate it began with (a block sliding on a plane:
+/// last/first step displacement about 1), one that stands comes to rest (about 0). Where the
+/// failing end of the bracket failed by its motion alone, and decayed less than twice as
+/// slowly as the standing end, the two differ by the threshold `decay` and not by their
+/// mechanics (elastic blocks creeping in the static steps, a mechanism slower than the trial):
+/// the factor found is the factor at which the creep crosses `decay`, not a limit state.
+std::string separation_warning(const FosResult& result, double decay) {
+  const auto trial_at = [&](double factor) -> const FosTrial* {
+    for (const FosTrial& t : result.trials)
+      if (t.factor == factor)
+        return &t;
+    return nullptr;
+  };
+  const FosTrial* stands = trial_at(result.stable);
+  const FosTrial* fails = trial_at(result.failing);
+  if (stands == nullptr || fails == nullptr || !fails->error.empty() || fails->lock_excess > 0.0 ||
+      !(fails->measure < 2.0 * stands->measure))
+    return {};
+  return "the trials at F = " + number_text(result.stable, 4) +
+         " (stands) and F = " + number_text(result.failing, 4) +
+         " (fails) decay alike: last/first step displacement " + number_text(stands->measure, 3) +
+         " and " + number_text(fails->measure, 3) +
+         " on either side of decay = " + number_text(decay, 3) +
+         ", where a sliding mechanism keeps about 1 and a model at rest about 0; the model "
+         "creeps in the static steps at either strength, so the factor is where that creep "
+         "crosses decay, not a limit state: check it with `nmm run` at the reduced strengths "
+         "(kind = \"dynamic\"), or with more [fos] steps";
+}
+
 } // namespace
 
 const char* fos_status_name(FosStatus status) {
@@ -201,6 +230,8 @@ FosResult find_factor_of_safety(const CaseSpec& spec, const FosOptions& options)
   result.status = FosStatus::found;
   result.factor_of_safety = 0.5 * (result.stable + result.failing);
   result.failing_blocks = failing_blocks(result.trials);
+  if (std::string warning = separation_warning(result, fos.decay); !warning.empty())
+    result.warnings.push_back(std::move(warning));
   return result;
 }
 
@@ -218,6 +249,9 @@ std::string fos_json(const CaseSpec& spec, const FosResult& result) {
   out += "  \"failing_blocks\": [";
   for (std::size_t k = 0; k < result.failing_blocks.size(); ++k)
     out += (k == 0 ? "" : ", ") + std::to_string(result.failing_blocks[k]);
+  out += "],\n  \"warnings\": [";
+  for (std::size_t k = 0; k < result.warnings.size(); ++k)
+    out += (k == 0 ? "" : ", ") + json_string(result.warnings[k]);
   out += "],\n  \"trials\": [";
   for (std::size_t k = 0; k < result.trials.size(); ++k) {
     const FosTrial& t = result.trials[k];

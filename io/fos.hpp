@@ -65,6 +65,9 @@ struct FosResult {
   std::vector<FosTrial> trials;
   /// What a trial's failure means, in words (fos.json's `criterion`).
   std::string criterion;
+  /// What the user must know about the result (fos.json's `warnings`): a bracket whose
+  /// standing and failing trials the criterion hardly tells apart (separation_warning()).
+  std::vector<std::string> warnings;
 };
 
 /// What find_factor_of_safety() reports as it goes; may be empty.

@@ -4,6 +4,8 @@
 
 #include "io/text.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <string>
 
 namespace nmm {

@@ -98,6 +98,23 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
+TEST_F(FosCli, RoadCutWhoseBlocksCreepAtEveryStrengthWarnsThatItsFactorIsNoLimitState) {
+  // examples/18's road cut: its elastic DDA blocks creep in the static steps at every
+  // strength (last/first step displacement 0.056 at F = 0.5, where the 35 degree slabs hold
+  // with 43 degrees of friction, and 0.100 at F = 1, where they slide: limit equilibrium
+  // gives tan 25 / tan 35 = 0.666), so the search ends where the creep crosses decay = 0.1
+  // (F = 0.90) and must say that this is no limit state.
+  const fs::path example = fs::path(NMM_EXAMPLES_DIR) / "18_road_cut_joint_sets" / "case.toml";
+  const fs::path out = dir() / "fos";
+  const ProcessResult run = nmm({"fos", example.string(), "-o", out.string()});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const testing::Json fos = parse_json(read_text(out / "fos.json"));
+  ASSERT_EQ(fos.at("warnings").items.size(), 1u);
+  EXPECT_NE(fos.at("warnings").items[0].string.find("not a limit state"), std::string::npos)
+      << fos.at("warnings").items[0].string;
+  EXPECT_NE(run.err.find("warning: the trials at F = "), std::string::npos) << run.err;
+}
+
 TEST_F(FosCli, BlockOnAPlaneWritesFosJsonAndPrintsTheFactor) {
   write_text(dir() / "plane.geo", plane_geo);
   write_text(dir() / "case.toml", plane_case);
@@ -115,8 +132,8 @@ TEST_F(FosCli, BlockOnAPlaneWritesFosJsonAndPrintsTheFactor) {
   std::vector<std::string> keys;
   for (const auto& [key, value] : fos.members)
     keys.push_back(key);
-  for (const char* key :
-       {"factor_of_safety", "bracket", "status", "criterion", "failing_blocks", "trials"})
+  for (const char* key : {"factor_of_safety", "bracket", "status", "criterion", "failing_blocks",
+                          "warnings", "trials"})
     EXPECT_NE(std::find(keys.begin(), keys.end(), key), keys.end()) << key;
   EXPECT_EQ(fos.at("status").string, "found");
   const double factor = fos.at("factor_of_safety").number;
@@ -128,6 +145,8 @@ TEST_F(FosCli, BlockOnAPlaneWritesFosJsonAndPrintsTheFactor) {
   EXPECT_LT(bracket.items[0].number, factor);
   EXPECT_GT(bracket.items[1].number, factor);
   EXPECT_EQ(fos.at("failing_blocks").items.size(), 1u);
+  EXPECT_TRUE(fos.at("warnings").items.empty());
+  EXPECT_EQ(run.err.find("warning: "), std::string::npos) << run.err;
   const testing::Json& trials = fos.at("trials");
   ASSERT_GE(trials.items.size(), 3u);
   bool stood = false;

@@ -139,6 +139,8 @@ TEST_P(BlockOnAPlane, FactorOfSafetyIsLimitEquilibriumsToOnePercent) {
   EXPECT_LE(result.failing - result.stable, 0.01 * result.stable + 1e-12) << c;
   // The block is what fails, the ramp (held along its base) is not.
   EXPECT_EQ(result.failing_blocks.size(), 1u) << c;
+  // A block sliding on a plane is a mechanism the criterion tells from rest.
+  EXPECT_TRUE(result.warnings.empty()) << c << ": " << result.warnings.front();
   std::printf("[fos] %s alpha %g phi %g c %g: F = %.5g (limit equilibrium %.5g, %+.2f%%), "
               "%zu trials\n",
               c.model, c.alpha_degrees, c.phi_degrees, c.cohesion, result.factor_of_safety,
