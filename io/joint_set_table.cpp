@@ -76,6 +76,15 @@ JointSetSpec read_joint_set(Context& context,
     view.fail_at_key("gap", "[[joint_set]] gap needs a trace: without trace the joints are "
                             "persistent and have no rock bridges; add trace = 5.0 (m) or "
                             "remove gap");
+  // gap defaults to 0: the traces of a line touch end to end and cut like persistent joints,
+  // while a user who gives a trace most likely means joints that end in rock; say so.
+  if (p.trace && !view.has("gap"))
+    context.warn(view.key_position("trace").line,
+                 "[[joint_set]] (joint = " + in_quotes(*joint) +
+                     ") trace = " + format_number(*p.trace) +
+                     " without gap: the joints of each line follow end to end with no rock "
+                     "bridge between them, so they cut like persistent joints; add gap = 1.0 "
+                     "(m) for rock bridges, or gap = 0.0 to keep this and silence the warning");
   p.origin = view.vector<2>("origin", "m", "[0.0, 0.0]").value_or(Point2::Zero());
   if (const std::optional<std::string> region = view.name_string("region", "Physical Surface"))
     spec.region = *region;

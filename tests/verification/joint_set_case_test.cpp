@@ -12,6 +12,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace nmm {
 namespace {
@@ -142,6 +143,28 @@ TEST(JointSetCase, BadJointSetsAreRefusedNamingTheFileTheLineAndWhatToDo) {
   expect("spacing = 100.0", "spacing = 0.2\nmax_blocks = 20", "case.toml:13", "raise `max_blocks`");
   // Good input is not refused.
   EXPECT_EQ(error_of(dir, good), "");
+}
+
+TEST(JointSetCase, ATraceWithoutAGapWarnsThatTheJointsActAsPersistentOnes) {
+  const TempDir dir("nmm_joint_set_trace_warning");
+  const std::string good = slope_case(30.0, 20.0, {10.0, 10.0});
+  const auto warnings_of = [&](const std::string& to) {
+    std::string text = good;
+    text.replace(text.find("spacing = 100.0"), 15, to);
+    return parse_case_text(text, dir.path() / "case.toml").warnings;
+  };
+  // Line 17 is the first line after spacing (line 16) of slope_case()'s [[joint_set]].
+  const std::vector<std::string> without_gap = warnings_of("spacing = 100.0\ntrace = 5.0");
+  ASSERT_EQ(without_gap.size(), 1u);
+  EXPECT_NE(without_gap[0].find("case.toml:17: [[joint_set]] (joint = \"set\") trace = 5 "
+                                "without gap"),
+            std::string::npos)
+      << without_gap[0];
+  EXPECT_NE(without_gap[0].find("add gap = 1.0"), std::string::npos) << without_gap[0];
+  // A gap given, even 0, is the user's choice: no warning.
+  EXPECT_TRUE(warnings_of("spacing = 100.0\ntrace = 5.0\ngap = 0.0").empty());
+  EXPECT_TRUE(warnings_of("spacing = 100.0\ntrace = 5.0\ngap = 1.0").empty());
+  EXPECT_TRUE(warnings_of("spacing = 100.0").empty());
 }
 
 } // namespace
