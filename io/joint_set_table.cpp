@@ -52,8 +52,8 @@ JointSetSpec read_joint_set(Context& context,
   }
   spec.joint = *joint;
   JointSetParameters& p = spec.parameters;
-  p.where = file + ":" + std::to_string(spec.line) +
-            ": [[joint_set]] (joint = " + in_quotes(*joint) + ")";
+  const std::string subject = "[[joint_set]] (joint = " + in_quotes(*joint) + ")";
+  p.where = file + ":" + std::to_string(spec.line) + ": " + subject;
   p.angle_degrees = view.required_number("angle",
                                          "the direction of the joints, degrees "
                                          "counter-clockwise from +x",
@@ -80,8 +80,7 @@ JointSetSpec read_joint_set(Context& context,
   // while a user who gives a trace most likely means joints that end in rock; say so.
   if (p.trace && !view.has("gap"))
     context.warn(view.key_position("trace").line,
-                 "[[joint_set]] (joint = " + in_quotes(*joint) +
-                     ") trace = " + format_number(*p.trace) +
+                 subject + " trace = " + format_number(*p.trace) +
                      " without gap: the joints of each line follow end to end with no rock "
                      "bridge between them, so they cut like persistent joints; add gap = 1.0 "
                      "(m) for rock bridges, or gap = 0.0 to keep this and silence the warning");
