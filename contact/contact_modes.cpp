@@ -246,7 +246,7 @@ ContactSystem::ModeStep ContactSystem::closed_mode(const ContactPoint& lead, con
     // cannot chatter (a tunnel's faces at a tie were held with 0.42 MN of shear and no
     // normal force).
     if (std::abs(r.shear) > r.limit + r.noise && !hold_shear_) {
-      if (r.limit > 0.0 && lead.slips >= options_.chatter_limit && !dynamic_) {
+      if (r.limit > 0.0 && lead.slips >= options_.chatter_limit && !chatter_slides_) {
         ++counters_.chatter_holds;
         held_beyond_.emplace_back(std::abs(r.shear) - r.limit, std::abs(r.shear) / r.limit);
       } else {
@@ -261,7 +261,7 @@ ContactSystem::ModeStep ContactSystem::closed_mode(const ContactPoint& lead, con
     // chatter limit keeps sliding, its friction at the limit and in its direction: the
     // force is Coulomb's, and what it does along a motion that turned back is reported
     // (ModeUpdate::slide_feed).
-    if (r.limit > 0.0 && !hold_shear_ && dynamic_ && lead.slips >= options_.chatter_limit) {
+    if (r.limit > 0.0 && !hold_shear_ && chatter_slides_ && lead.slips >= options_.chatter_limit) {
       ++counters_.chatter_holds;
       held_against_.emplace_back(r.limit, std::abs(r.motion));
     } else if (r.limit > 0.0 && !hold_shear_) {

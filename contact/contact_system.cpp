@@ -433,7 +433,7 @@ void ContactSystem::set_up_shapes(const Model& model) {
   }
 }
 
-void ContactSystem::set_dynamic(bool dynamic) { dynamic_ = dynamic; }
+void ContactSystem::set_chatter_slides(bool slides) { chatter_slides_ = slides; }
 
 void ContactSystem::set_hold_shear(bool hold) {
   hold_shear_ = hold;

@@ -212,10 +212,11 @@ public:
   /// back_to_converged() went back to; none after begin_step() or restart_step().
   [[nodiscard]] FrictionHolds holds() const noexcept { return holds_; }
 
-  /// Whether the step begun last is dynamic (its velocities carry on): a contact at the
-  /// chatter limit of friction then slides at its limit for the rest of the step instead of
-  /// being held locked beyond it (docs/formulation.md, "Chatter rule").
-  void set_dynamic(bool dynamic);
+  /// Whether a contact at the chatter limit of friction slides at its limit for the rest of
+  /// the step begun last instead of being held locked beyond it (docs/formulation.md,
+  /// "Chatter rule"): in a dynamic step (its velocities carry on), and in the static steps of
+  /// a strength-reduction trial (StepperOptions::static_chatter_slides).
+  void set_chatter_slides(bool slides);
 
   /// While set, the friction of a sliding contact is no load from the normal force of the
   /// last iteration: it is coupled to the normal force of the solve itself. contribution()
@@ -717,7 +718,7 @@ private:
   /// chatter limit whose motion turned back.
   std::vector<std::pair<double, double>> held_against_;
   FrictionHolds holds_; ///< holds()
-  bool dynamic_ = false;
+  bool chatter_slides_ = false;
   bool coupled_friction_ = false; ///< set_coupled_friction()
   /// The normal spring stiffness per unit length of an edge-to-edge contact of @p strength
   /// (its points get it times their length), N/m per m: the joint's own normal_stiffness,

@@ -221,6 +221,9 @@ struct AnalysisSpec {
   /// Solve the loads at time 0 statically with every touching contact locked before the
   /// first step (TimeStepper::equilibrate()); displacements count from that state.
   bool initial_equilibrium = false;
+  /// Not a case-file key: `nmm fos` sets it for its trials (StepperOptions::
+  /// static_chatter_slides).
+  bool static_chatter_slides = false;
 };
 
 /// `[[monitor]]`: a material point whose history goes to history.csv.

@@ -634,6 +634,7 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase, double 
   options.energy_error_limit = spec_.analysis.energy_error_limit;
   options.velocity_ratio = spec_.analysis.velocity_ratio;
   options.open_close_max = spec_.analysis.open_close_max;
+  options.static_chatter_slides = spec_.analysis.static_chatter_slides;
   if (spec_.analysis.solver == LinearSolverKind::pcg)
     options.conjugate_gradients = PcgOptions{.tolerance = spec_.analysis.pcg_tolerance,
                                              .loose_tolerance = spec_.analysis.pcg_mode_tolerance};

@@ -19,8 +19,7 @@ namespace nmm {
 /// steps` of Shi's static steps.
 struct FosTrial {
   double factor = 1.0;
-  /// By the criterion (FosSpec: still moving at the end, or a lock held beyond friction), or
-  /// because a step failed (error).
+  /// By the criterion (FosSpec: still moving at the end), or because a step failed (error).
   bool failed = false;
   /// Static steps run.
   long steps = 0;
@@ -30,7 +29,9 @@ struct FosTrial {
   /// last_displacement / first_displacement (0 when the first tenth did not move at all).
   double measure = 0.0;
   /// The largest StepReport::lock_excess of the last tenth of the steps: a contact held
-  /// locked beyond its friction limit by the chatter rule (shear over limit; 0: none).
+  /// locked beyond its friction limit by the chatter rule (shear over limit; 0: none). A
+  /// trial lets such locks slide at their limit (StepperOptions::static_chatter_slides), so
+  /// it is 0; fos.json keeps the field.
   double lock_excess = 0.0;
   /// Blocks (Model::blocks ids) whose centroid moved over the last tenth of the steps more
   /// than `decay` times the sum of the first tenth's largest step displacements, and more than
@@ -59,7 +60,8 @@ struct FosResult {
   double stable = 0.0;
   double failing = 0.0;
   /// moving_blocks of the failing trial of smallest factor in which blocks kept moving (the
-  /// mechanism nearest the limit; a trial held by a lock beyond friction may have none).
+  /// mechanism nearest the limit; a trial that failed by a step that could not be cut enough
+  /// may have none).
   std::vector<int> failing_blocks;
   /// Every trial, in the order run.
   std::vector<FosTrial> trials;

@@ -3,6 +3,8 @@
 // safety by strength reduction (docs/case-file.md, "[fos]"; io/fos.hpp does the search).
 #pragma once
 
+#include <optional>
+
 namespace nmm {
 
 /// `[fos]`: every key optional. A trial at factor F runs `steps` of Shi's static steps with
@@ -25,6 +27,10 @@ struct FosSpec {
   double bracket_high = 2.0;
   /// The bisection stops when (failing - stable) / stable is at most this, in [1e-4, 0.5].
   double tolerance = 0.01;
+  /// The trials' time step: when time_step_set, time_step (s; empty: "auto", Shi's automatic
+  /// step, 8.5) replaces `[analysis] time_step`; else the case's own is kept.
+  bool time_step_set = false;
+  std::optional<double> time_step;
   /// Line of `[fos]` in the case file; 0 when it has none.
   int line = 0;
 };

@@ -11,7 +11,8 @@
 namespace nmm {
 
 /// The keys `[fos]` accepts (the case file's schema).
-inline constexpr std::string_view fos_keys[] = {"steps", "decay", "rest", "bracket", "tolerance"};
+inline constexpr std::string_view fos_keys[] = {"steps",   "decay",     "rest",
+                                                "bracket", "tolerance", "time_step"};
 
 /// The `[fos]` table of @p root, every default applied; the defaults when it has none.
 /// @throws InputError "file:line:column: [fos] KEY ...; what to do" for a value out of range.

@@ -228,7 +228,7 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   if (impl_->contact) {
     impl_->contact->begin_step(model_, context.kind.limit);
     impl_->contact->set_hold_shear(equilibrium);
-    impl_->contact->set_dynamic(context.kind.dynamic);
+    impl_->contact->set_chatter_slides(context.kind.dynamic || options_.static_chatter_slides);
     ++counters_.contact_searches;
   }
   clock.lap(counters_.seconds_detection);

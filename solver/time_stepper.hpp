@@ -71,6 +71,12 @@ struct StepperOptions {
   /// springs at rest (v1 = 2d/dt - v0), the kinetic energy it removes counted as
   /// dissipated (docs/formulation.md, "Energy balance"). 1: the velocities carry over.
   double velocity_ratio = 1.0;
+  /// A lock that has switched between lock and slide chatter_limit times in a static step
+  /// slides at its friction limit for the rest of the step, as in a dynamic step, instead of
+  /// being held locked beyond it (docs/formulation.md, "Chatter rule"). For the trials of a
+  /// strength reduction (`nmm fos`): a lock held beyond Coulomb's limit stands a block that
+  /// the reduced strength lets slide, and whether it slides is what a trial asks.
+  bool static_chatter_slides = false;
 };
 
 /// What stays defined through the run: supports, loads and the material points to follow.

@@ -622,7 +622,7 @@ TEST(Chatter, InADynamicStepAContactAtTheFrictionLimitSlidesAtItAndWhatItFeedsIn
   // (1e-13 m against 1e-4 m).
   const RowOnABase row;
   ContactSystem* contact = row.contact.get();
-  contact->set_dynamic(true);
+  contact->set_chatter_slides(true);
   const Model& model = row.s.model;
   EXPECT_EQ(contact->update_modes(model, row.moved(1e-4, 1e-3)).slide_feed, 0.0);
   EXPECT_GT(row.in_mode(ContactMode::slide, 1), 0) << "the lock let go";

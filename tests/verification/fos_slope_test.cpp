@@ -10,7 +10,16 @@
 // must also lie in [tan phi / tan 20, tan phi / tan 19], a band 5.5% wide: the search's
 // tolerance of 2% (its answer within 1% of the factor it brackets) tells the two apart.
 // The example's case files say `[fos] steps = 200` (the arc's slow start needs them).
-// Slow: about 25 s a case in Release.
+// And examples/18's road cut, two joint sets of DDA blocks: the slabs that daylight on the
+// face rest on bedding joints dipping 35 degrees, so by hand a slab slides when tan(phi) / F
+// < tan 35, F = tan(phi) / tan 35 (0.666 at phi 25, 1.198 at phi 40). The cross joints
+// (75 degrees into the slope, their friction reduced alike) cut the slabs, and a slab that
+// must push or shear past its neighbours needs a larger F, never a smaller one unless
+// another mechanism (toppling) comes first: F must lie from 0.5% below the hand figure (the
+// bisection's middle is within half its 1% bracket of the factor it brackets) to 1% above
+// (measured +0.0% and +0.1%, with the example's [fos] time_step = 0.05 s; with the dynamic
+// runs' 1 ms, 0.902 and 1.387 and a warning that the trials decay alike). Slow: about 25 s
+// a case in Release (examples/15), 8 s (examples/18).
 #include "io/case_file.hpp"
 #include "io/fos.hpp"
 
@@ -79,6 +88,35 @@ TEST(FosCircularSlip, SlidingSlopeOf17DegreesHasAFactorBelowOneBetweenTheLimits)
   const FosResult result = circular_slip("case.toml", 17.0);
   expect_between_the_limits(result, 17.0);
   EXPECT_LT(result.factor_of_safety, 1.0);
+}
+
+/// `nmm fos` on examples/18's @p file against tan(phi) / tan(35 degrees).
+void expect_road_cut_by_hand(const std::string& file, double phi_degrees) {
+  const fs::path folder = fs::path(NMM_EXAMPLES_DIR) / "18_road_cut_joint_sets";
+  const FosResult result = find_factor_of_safety(read_case_file(folder / file));
+  ASSERT_EQ(result.status, FosStatus::found) << file;
+  const double by_hand = factor_at(phi_degrees, 35.0);
+  EXPECT_GE(result.factor_of_safety, 0.995 * by_hand) << file;
+  EXPECT_LE(result.factor_of_safety, 1.01 * by_hand) << file;
+  // Both sides: it stood just below and failed just above, within the bracket.
+  EXPECT_LE(result.stable, 1.01 * by_hand) << file;
+  EXPECT_GE(result.failing, 0.995 * by_hand) << file;
+  // Slabs fail, not the whole cut: the blocks resting on the held base stay.
+  EXPECT_FALSE(result.failing_blocks.empty()) << file;
+  EXPECT_TRUE(result.warnings.empty()) << file << ": " << result.warnings.front();
+  std::printf("[fos] examples/18 phi %g: F = %.4g (bracket %.4g to %.4g, %zu trials, %zu "
+              "failing blocks); by hand tan(phi) / tan 35 = %.4g (%+.2f%%)\n",
+              phi_degrees, result.factor_of_safety, result.stable, result.failing,
+              result.trials.size(), result.failing_blocks.size(), by_hand,
+              100.0 * (result.factor_of_safety / by_hand - 1.0));
+}
+
+TEST(FosRoadCut, SlabsOnBeddingOf35DegreesWithPhi25HaveTheHandFactorBelowOne) {
+  expect_road_cut_by_hand("case.toml", 25.0);
+}
+
+TEST(FosRoadCut, SlabsOnBeddingOf35DegreesWithPhi40HaveTheHandFactorAboveOne) {
+  expect_road_cut_by_hand("case_phi40.toml", 40.0);
 }
 
 } // namespace

@@ -47,6 +47,7 @@ TEST(FosTable, AbsentGivesTheDefaults) {
   EXPECT_EQ(fos.bracket_low, 1.0);
   EXPECT_EQ(fos.bracket_high, 2.0);
   EXPECT_EQ(fos.tolerance, 0.01);
+  EXPECT_FALSE(fos.time_step_set); // the case's [analysis] time_step
 }
 
 TEST(FosTable, ReadsEveryKey) {
@@ -60,6 +61,16 @@ TEST(FosTable, ReadsEveryKey) {
   EXPECT_EQ(fos.bracket_low, 0.5);
   EXPECT_EQ(fos.bracket_high, 3.0);
   EXPECT_EQ(fos.tolerance, 0.02);
+  EXPECT_FALSE(fos.time_step_set);
+}
+
+TEST(FosTable, TimeStepIsANumberOrAuto) {
+  const FosSpec fixed = parse("[fos]\ntime_step = 0.05\n").fos;
+  EXPECT_TRUE(fixed.time_step_set);
+  EXPECT_EQ(fixed.time_step, 0.05);
+  const FosSpec automatic = parse("[fos]\ntime_step = \"auto\"\n").fos;
+  EXPECT_TRUE(automatic.time_step_set);
+  EXPECT_FALSE(automatic.time_step.has_value());
 }
 
 TEST(FosTable, ValuesOutOfRangeAreRefusedAtTheirLine) {
@@ -75,12 +86,15 @@ TEST(FosTable, ValuesOutOfRangeAreRefusedAtTheirLine) {
         std::pair{"bracket = [1.0]", "[fos] bracket has 1 value(s) but needs exactly 2"},
         std::pair{"tolerance = 0.00009", "[fos] tolerance = 9e-05 is out of range"},
         std::pair{"tolerance = 0.6", "[fos] tolerance = 0.6 is out of range"},
+        std::pair{"time_step = 0.0", "case.toml:13:13: [fos] time_step = 0 is out of range"},
+        std::pair{"time_step = \"fast\"", "[fos] time_step = \"fast\" is not allowed"},
         std::pair{"step = 100", "case.toml:13:1: [fos] has no key step; did you mean steps?"}}) {
     const std::string message = error_of(std::string("[fos]\n") + fos + "\n");
     EXPECT_NE(message.find(expected), std::string::npos) << fos << ": " << message;
   }
-  for (const char* fos : {"steps = 10", "steps = 1000000", "decay = 0.99", "rest = 1e-20",
-                          "bracket = [0.01, 0.02]", "tolerance = 0.0001", "tolerance = 0.5"})
+  for (const char* fos :
+       {"steps = 10", "steps = 1000000", "decay = 0.99", "rest = 1e-20", "bracket = [0.01, 0.02]",
+        "tolerance = 0.0001", "tolerance = 0.5", "time_step = 1e-9"})
     EXPECT_EQ(error_of(std::string("[fos]\n") + fos + "\n"), "") << fos;
 }
 
