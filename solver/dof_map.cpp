@@ -5,19 +5,78 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 
 namespace nmm {
 
 namespace {
 
-/// A slave: raw unknown = sum coefficient * raw free unknown + constant.
+/// A slave: raw unknown = sum coefficient * raw free unknown + constant (terms sorted by
+/// unknown).
 struct Expression {
   std::vector<std::pair<int, double>> terms;
   double constant = 0.0;
-  std::string origin;
 };
+
+using Terms = std::vector<std::pair<int, double>>;
+
+/// A row's coefficients summed per raw unknown, in a dense array over all raw unknowns
+/// touched by the row (a std::map per row cost an eighth of an order-1 contact step):
+/// add() sums in the order called, take() hands them out sorted by unknown and clears.
+class RowSum {
+public:
+  explicit RowSum(std::size_t n) : sum_(n, 0.0), touched_(n, 0) {}
+  void add(int raw, double c) {
+    const auto r = static_cast<std::size_t>(raw);
+    if (touched_[r] == 0) {
+      touched_[r] = 1;
+      order_.push_back(raw);
+    }
+    sum_[r] += c;
+  }
+  void take(Terms& out) {
+    std::sort(order_.begin(), order_.end());
+    out.clear();
+    for (const int raw : order_) {
+      const auto r = static_cast<std::size_t>(raw);
+      out.emplace_back(raw, sum_[r]);
+      sum_[r] = 0.0;
+      touched_[r] = 0;
+    }
+    order_.clear();
+  }
+
+private:
+  std::vector<double> sum_;
+  std::vector<char> touched_;
+  std::vector<int> order_;
+};
+
+/// @p e's terms with @p c times @p fresh's added (both sorted by unknown; a term only in
+/// fresh starts from 0, as a new entry would), and @p u among the users of every unknown
+/// that is new to @p e.
+void add_terms(Expression& e,
+               double c,
+               const Terms& fresh,
+               int u,
+               std::vector<std::vector<int>>& users,
+               Terms& merged) {
+  merged.clear();
+  auto old = e.terms.begin();
+  for (const auto& [raw, d] : fresh) {
+    for (; old != e.terms.end() && old->first < raw; ++old)
+      merged.push_back(*old);
+    if (old != e.terms.end() && old->first == raw) {
+      merged.emplace_back(raw, old->second + c * d);
+      ++old;
+    } else {
+      users[static_cast<std::size_t>(raw)].push_back(u);
+      merged.emplace_back(raw, 0.0 + c * d);
+    }
+  }
+  merged.insert(merged.end(), old, e.terms.end());
+  e.terms.swap(merged);
+}
 
 } // namespace
 
@@ -32,6 +91,10 @@ DofMap::DofMap(int n_raw,
   // For each raw unknown, the expressions that may mention it (stale entries are skipped).
   std::vector<std::vector<int>> users(static_cast<std::size_t>(n_raw));
   stats_.constraints = static_cast<int>(constraints.size());
+  RowSum sum(static_cast<std::size_t>(n_raw));
+  Terms all;
+  Terms reduced;
+  Terms merged;
 
   for (const LinearConstraint& row : constraints) {
     double scale = 0.0;
@@ -40,26 +103,25 @@ DofMap::DofMap(int n_raw,
       scale = std::max(scale, std::abs(c));
     }
     // Substitute the slaves chosen so far: the row in free unknowns only.
-    std::map<int, double> reduced;
     double rhs = row.value;
     for (const auto& [raw, c] : row.terms) {
       const int s = slave_of[static_cast<std::size_t>(raw)];
       if (s < 0) {
-        reduced[raw] += c;
+        sum.add(raw, c);
         continue;
       }
       const Expression& e = expressions[static_cast<std::size_t>(s)];
       rhs -= c * e.constant;
       for (const auto& [other, d] : e.terms)
-        reduced[other] += c * d;
+        sum.add(other, c * d);
     }
+    sum.take(all);
     double largest = 0.0;
-    for (auto it = reduced.begin(); it != reduced.end();) {
-      if (std::abs(it->second) <= tolerance * scale) {
-        it = reduced.erase(it);
-      } else {
-        largest = std::max(largest, std::abs(it->second));
-        ++it;
+    reduced.clear();
+    for (const auto& term : all) {
+      if (std::abs(term.second) > tolerance * scale) {
+        reduced.push_back(term);
+        largest = std::max(largest, std::abs(term.second));
       }
     }
     // A row whose remaining coefficients are all far below its own is numerically a
@@ -83,8 +145,11 @@ DofMap::DofMap(int n_raw,
       continue;
     }
     int pivot = -1;
-    const auto preferred = reduced.find(row.preferred_slave);
-    if (preferred != reduced.end() && std::abs(preferred->second) >= 0.1 * largest) {
+    const auto preferred =
+        std::lower_bound(reduced.begin(), reduced.end(), row.preferred_slave,
+                         [](const std::pair<int, double>& t, int raw) { return t.first < raw; });
+    if (preferred != reduced.end() && preferred->first == row.preferred_slave &&
+        std::abs(preferred->second) >= 0.1 * largest) {
       pivot = preferred->first;
     } else if (previous != nullptr && previous->n_raw() == n_raw) {
       // The largest of the last step's slaves that is big enough, if any.
@@ -104,10 +169,11 @@ DofMap::DofMap(int n_raw,
         }
       }
     }
-    const double a = reduced[pivot];
+    const double a = std::find_if(reduced.begin(), reduced.end(), [&](const auto& t) {
+                       return t.first == pivot;
+                     })->second;
     Expression fresh;
     fresh.constant = rhs / a;
-    fresh.origin = row.origin;
     for (const auto& [raw, c] : reduced) {
       if (raw != pivot)
         fresh.terms.emplace_back(raw, -c / a);
@@ -122,13 +188,7 @@ DofMap::DofMap(int n_raw,
       const double c = found->second;
       e.terms.erase(found);
       e.constant += c * fresh.constant;
-      std::map<int, double> merged(e.terms.begin(), e.terms.end());
-      for (const auto& [raw, d] : fresh.terms) {
-        if (merged.find(raw) == merged.end())
-          users[static_cast<std::size_t>(raw)].push_back(u);
-        merged[raw] += c * d;
-      }
-      e.terms.assign(merged.begin(), merged.end());
+      add_terms(e, c, fresh.terms, u, users, merged);
     }
     users[static_cast<std::size_t>(pivot)].clear();
     const int index = static_cast<int>(expressions.size());
