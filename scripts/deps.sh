@@ -10,7 +10,9 @@ if [ "${1:-}" = "--tests" ]; then
   # lld: CMakeLists.txt links with it when present (the sanitizer build's links 3x faster);
   # it needs the same libllvm14 as clang-format-14. python3: the check that every output
   # file is well-formed XML (tests/tools/check_output_xml.py; standard library only).
-  packages+=(clang-format-14 lld python3)
+  # ccache: a second run of the test command (CI on the same machine, a fresh clone anywhere:
+  # scripts/build.sh makes its paths relative to the checkout) compiles only what changed.
+  packages+=(clang-format-14 lld python3 ccache)
 fi
 missing=()
 for p in "${packages[@]}"; do
