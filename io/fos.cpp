@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace nmm {
@@ -24,8 +25,8 @@ bool has_strength(const JointProperties& p) {
 }
 
 /// The moving blocks of the failing trial of smallest factor in which blocks kept moving
-/// (one that failed by a step that could not be cut enough may have none): the mechanism nearest
-/// the limit.
+/// (one that failed by a step that could not be cut enough may have none): the mechanism
+/// nearest the limit.
 std::vector<int> failing_blocks(const std::vector<FosTrial>& trials) {
   const FosTrial* nearest = nullptr;
   for (const FosTrial& t : trials)
@@ -180,10 +181,13 @@ FosResult find_factor_of_safety(const CaseSpec& spec, const FosOptions& options)
   const FosSpec& fos = spec.fos;
   FosResult result;
   const int window = window_of(fos.steps);
+  // The trials' time step (run_fos_trial()): [fos] time_step, else the case's.
+  const std::optional<double> dt = fos.time_step_set ? fos.time_step : spec.analysis.time_step;
+  const std::string step_text =
+      dt ? "time step " + number_text(*dt, 6) + " s" : "the automatic time step of Shi 8.5";
   result.criterion =
-      "Shi's static steps (velocities reset every step, the automatic time step of 8.5, a "
-      "lock at the chatter limit sliding at its friction limit), " +
-      std::to_string(fos.steps) +
+      "Shi's static steps (velocities reset every step, " + step_text +
+      ", a lock at the chatter limit sliding at its friction limit), " + std::to_string(fos.steps) +
       " a trial: a trial fails when the mean largest step displacement of its last " +
       std::to_string(window) + " steps is above rest = " + number_text(fos.rest, 6) +
       " m and above decay = " + number_text(fos.decay, 6) + " times that of its first " +

@@ -20,9 +20,9 @@ struct Expression {
 
 using Terms = std::vector<std::pair<int, double>>;
 
-/// A row's coefficients summed per raw unknown, in a dense array over all raw unknowns
-/// touched by the row (a std::map per row cost an eighth of an order-1 contact step):
-/// add() sums in the order called, take() hands them out sorted by unknown and clears.
+/// A row's coefficients summed per raw unknown in a dense array (a std::map per row allocated
+/// a node for every term, in every step of an order-1 model): add() sums in the order
+/// called, take() hands the sums out sorted by unknown and clears the array for the next row.
 class RowSum {
 public:
   explicit RowSum(std::size_t n) : sum_(n, 0.0), touched_(n, 0) {}

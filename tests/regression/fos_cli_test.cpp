@@ -102,7 +102,7 @@ TEST_F(FosCli, RoadCutWhoseBlocksCreepAtEveryStrengthWarnsThatItsFactorIsNoLimit
   // examples/18's road cut without its [fos] table, so with the dynamic runs' time step of
   // 1 ms: a slab the reduced strength lets slide moves a dt^2 / 2 a static step, below the
   // settling of its 74 elastic blocks, which decays alike at every strength (last/first step
-  // displacement about 0.1 on both sides of F = 0.90, where limit equilibrium gives
+  // displacement about 0.1 on both sides of F = 0.96, where limit equilibrium gives
   // tan 25 / tan 35 = 0.666), so the search ends where that settling crosses decay = 0.1 and
   // must say that this is no limit state, and what to change.
   const fs::path example = fs::path(NMM_EXAMPLES_DIR) / "18_road_cut_joint_sets";

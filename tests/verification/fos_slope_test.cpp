@@ -18,7 +18,7 @@
 // another mechanism (toppling) comes first: F must lie from 0.5% below the hand figure (the
 // bisection's middle is within half its 1% bracket of the factor it brackets) to 1% above
 // (measured +0.0% and +0.1%, with the example's [fos] time_step = 0.05 s; with the dynamic
-// runs' 1 ms, 0.902 and 1.387 and a warning that the trials decay alike). Slow: about 25 s
+// runs' 1 ms, 0.957 and 1.496 and a warning that the trials decay alike). Slow: about 25 s
 // a case in Release (examples/15), 8 s (examples/18).
 #include "io/case_file.hpp"
 #include "io/fos.hpp"
