@@ -387,20 +387,10 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
     view.fail_missing("steps", "the number of time steps, 1 to 1e8", "2000");
   spec.steps = static_cast<int>(*steps);
   spec.time_step_line = view.key_position("time_step").line;
-  if (const toml::node* node = view.find("time_step")) {
-    if (const auto* text = node->as_string()) {
-      if (text->get() != "auto")
-        view.fail_at_value("time_step",
-                           "[analysis] time_step = " + in_quotes(text->get()) +
-                               " is not allowed; write a number of seconds (time_step = 1.0e-3) "
-                               "or \"auto\"");
-    } else {
-      spec.time_step = view.number("time_step", "s, or \"auto\"", "1.0e-3");
-      if (!(*spec.time_step > 0.0))
-        view.fail_range("time_step", *spec.time_step,
-                        "the time step must be > 0 (s); write \"auto\" to let nmm choose it");
-    }
-  }
+  spec.time_step =
+      view.time_step("time_step", "1.0e-3",
+                     "the time step must be > 0 (s); write \"auto\" to let nmm choose it")
+          .seconds;
   spec.max_step_displacement =
       view.number_or("max_step_displacement", 0.01, "fraction of the model size", "0.01");
   if (!(spec.max_step_displacement > 0.0 && spec.max_step_displacement <= 0.5))

@@ -132,6 +132,30 @@ public:
       return std::nullopt;
     return to_number(*node, key, unit, example);
   }
+  // A time step: a number of seconds > 0, or "auto" (set, no seconds: Shi's automatic step);
+  // absent: not set. @p example is the number the messages suggest, @p requirement what a
+  // number out of range is told.
+  struct TimeStep {
+    bool set = false;
+    std::optional<double> seconds;
+  };
+  [[nodiscard]] TimeStep
+  time_step(std::string_view key, std::string_view example, const std::string& requirement) const {
+    const toml::node* node = find(key);
+    if (!node)
+      return {};
+    if (const auto* text = node->as_string()) {
+      if (text->get() != "auto")
+        fail_at_value(key, subject(key) + " = " + in_quotes(text->get()) +
+                               " is not allowed; write a number of seconds (" + std::string(key) +
+                               " = " + std::string(example) + ") or \"auto\"");
+      return {true, std::nullopt};
+    }
+    const double seconds = to_number(*node, key, "s, or \"auto\"", example);
+    if (!(seconds > 0.0))
+      fail_range(key, seconds, requirement);
+    return {true, seconds};
+  }
   [[nodiscard]] double number_or(std::string_view key,
                                  double fallback,
                                  std::string_view unit,

@@ -36,20 +36,10 @@ FosSpec read_fos_table(Context& context, const toml::table& root) {
     view.fail_range("tolerance", spec.tolerance,
                     "it must be between 1e-4 and 0.5: the bracket's width relative to its "
                     "lower end at which the search stops");
-  if (const toml::node* node = view.find("time_step")) {
-    spec.time_step_set = true;
-    if (const auto* text = node->as_string()) {
-      if (text->get() != "auto")
-        view.fail_at_value("time_step", "[fos] time_step = \"" + text->get() +
-                                            "\" is not allowed; write a number of seconds "
-                                            "(time_step = 0.05) or \"auto\"");
-    } else {
-      spec.time_step = view.number("time_step", "s, or \"auto\"", "0.05");
-      if (!(*spec.time_step > 0.0))
-        view.fail_range("time_step", *spec.time_step,
-                        "it must be > 0 (s), or \"auto\" for Shi's automatic static step");
-    }
-  }
+  const TableView::TimeStep dt = view.time_step(
+      "time_step", "0.05", "it must be > 0 (s), or \"auto\" for Shi's automatic static step");
+  spec.time_step_set = dt.set;
+  spec.time_step = dt.seconds;
   return spec;
 }
 
