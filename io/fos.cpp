@@ -35,6 +35,14 @@ std::vector<int> failing_blocks(const std::vector<FosTrial>& trials) {
   return nearest != nullptr ? nearest->moving_blocks : std::vector<int>{};
 }
 
+/// The trials' time step: [fos] time_step when given, else the case's (empty: Shi's
+/// automatic step). A static step starts at rest, so a body that the reduced strength lets
+/// slide with acceleration a moves a dt^2 / 2 in it: [fos] time_step may make that longer than
+/// the case's dynamic step (docs/case-file.md, "[fos]").
+std::optional<double> trial_time_step(const CaseSpec& spec) {
+  return spec.fos.time_step_set ? spec.fos.time_step : spec.analysis.time_step;
+}
+
 /// The steps at each end of a trial that the criterion compares: a tenth of them.
 int window_of(int steps) { return std::max(1, steps / 10); }
 
@@ -116,11 +124,7 @@ FosTrial run_fos_trial(const CaseSpec& base, double factor) {
   spec.analysis.kind = AnalysisKind::quasi_static;
   spec.analysis.steps = steps;
   spec.analysis.end_time.reset();
-  // A static step starts at rest, so a body that the reduced strength lets slide with
-  // acceleration a moves a dt^2 / 2 in it: [fos] time_step may make that longer than the
-  // case's dynamic step (docs/case-file.md, "[fos]").
-  if (base.fos.time_step_set)
-    spec.analysis.time_step = base.fos.time_step;
+  spec.analysis.time_step = trial_time_step(base);
   // A lock at the chatter limit slides at its limit: held beyond it, it stands a block that
   // Coulomb's law at the reduced strength lets slide (a DDA block 0.6 m x 0.4 m on 30 degrees
   // with phi = 40 stood to F = 1.8, limit equilibrium 1.453), and a lock held a little beyond
@@ -181,8 +185,7 @@ FosResult find_factor_of_safety(const CaseSpec& spec, const FosOptions& options)
   const FosSpec& fos = spec.fos;
   FosResult result;
   const int window = window_of(fos.steps);
-  // The trials' time step (run_fos_trial()): [fos] time_step, else the case's.
-  const std::optional<double> dt = fos.time_step_set ? fos.time_step : spec.analysis.time_step;
+  const std::optional<double> dt = trial_time_step(spec);
   const std::string step_text =
       dt ? "time step " + number_text(*dt, 6) + " s" : "the automatic time step of Shi 8.5";
   result.criterion =
