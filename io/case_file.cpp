@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "io/case_file.hpp"
 
+#include "io/bolt_table.hpp"
 #include "io/case_table.hpp"
 #include "io/fos_table.hpp"
 #include "io/in_situ_table.hpp"
@@ -50,7 +51,8 @@ constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geome
                                                "cover_mesh", "materials", "joints",
                                                "contact",    "boundary",  "load",
                                                "analysis",   "monitor",   "output",
-                                               "joint_set",  "fos",       "in_situ"};
+                                               "joint_set",  "fos",       "in_situ",
+                                               "bolt"};
 constexpr std::string_view cover_mesh_keys[] = {
     "kind",          "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance",
     "geometry_sizes"};
@@ -97,7 +99,7 @@ constexpr TableKeys all_tables[] = {
     {"[[boundary]]", boundary_keys},     {"[[load]]", load_keys},
     {"[analysis]", analysis_keys},       {"[[monitor]]", monitor_keys},
     {"[output]", output_keys},           {"[fos]", fos_keys},
-    {"[in_situ]", in_situ_keys},
+    {"[in_situ]", in_situ_keys},         {"[[bolt]]", bolt_keys},
 };
 
 constexpr std::string_view cover_mesh_kinds[] = {"regular", "gmsh"};
@@ -467,22 +469,7 @@ MonitorSpec read_monitor(Context& context, const toml::table& table) {
   const std::optional<std::string> name = view.string("name", "the monitor's name", "\"crest\"");
   if (!name)
     view.fail_missing("name", "a unique name of letters, digits and _", "\"crest\"");
-  if (name->empty())
-    view.fail_at_value("name", "[[monitor]] name is empty; give a name of letters, digits and _");
-  const auto bad = std::find_if(name->begin(), name->end(), [](char c) {
-    return !(std::isalnum(static_cast<unsigned char>(c)) || c == '_');
-  });
-  if (bad != name->end()) {
-    std::string fixed = *name;
-    for (char& c : fixed)
-      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_'))
-        c = '_';
-    view.fail_at_value("name", "[[monitor]] name = " + in_quotes(*name) + " contains '" +
-                                   std::string(1, *bad) +
-                                   "'; use only letters, digits and _ (it prefixes the "
-                                   "history.csv columns), e.g. name = " +
-                                   in_quotes(fixed));
-  }
+  check_column_name(view, "name", *name);
   spec.name = *name;
   const std::optional<Eigen::Vector2d> point = view.vector<2>("point", "m", "[10.0, 5.0]");
   if (!point)
@@ -693,6 +680,8 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
     spec.monitors.push_back(read_monitor(context, *table));
     monitor_name_positions.push_back(position_of(table->get("name")->source()));
   }
+
+  spec.bolts = read_bolt_tables(context, root);
 
   spec.output = read_output(context, root, file);
   spec.fos = read_fos_table(context, root);

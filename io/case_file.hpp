@@ -5,6 +5,7 @@
 #pragma once
 
 #include "io/fos_spec.hpp"
+#include "manifold/bolt.hpp"
 #include "manifold/boundary_conditions.hpp"
 #include "manifold/material.hpp"
 #include "mesh/geometry.hpp"
@@ -14,6 +15,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -236,6 +238,38 @@ struct MonitorSpec {
   int line = 0;
 };
 
+/// `[[bolt]]`: a rock bolt between two points, or along each gmsh curve of a Physical Curve
+/// (docs/case-file.md, "[[bolt]]"; io/bolt_table.cpp reads it, io/scene_bolts.cpp places it).
+struct BoltSpec {
+  /// Unique, [A-Za-z0-9_]+ (the history.csv column `NAME.force`); default "bolt1", "bolt2"...
+  /// in the order of the file. A curve of several gmsh curves makes NAME_1, NAME_2...
+  std::string name;
+  /// `from` and `to` (m), or the Physical Curve `curve` whose ends they are.
+  std::optional<Point2> from;
+  std::optional<Point2> to;
+  std::string curve;
+  BoltKind kind = BoltKind::end_anchored;
+  /// `stiffness` (N/m, the whole bolt's axial stiffness) or `young` (Pa) x `area` (m^2):
+  /// exactly one is given; axial_rigidity() makes EA of them.
+  std::optional<double> stiffness;
+  double young = 0.0;
+  double area = 0.0;
+  /// N, tension positive; |pretension| below the yield and rupture forces.
+  double pretension = 0.0;
+  /// N, > 0; infinity when absent.
+  double yield_force = std::numeric_limits<double>::infinity();
+  double rupture_force = std::numeric_limits<double>::infinity();
+  /// Yielding over elastic stiffness, in [0, 1).
+  double hardening = 0.0;
+  /// Line of this `[[bolt]]` header in the case file.
+  int line = 0;
+
+  /// EA (N) of a bolt of length @p length: young x area, or stiffness x length.
+  [[nodiscard]] double axial_rigidity(double length) const {
+    return stiffness ? *stiffness * length : young * area;
+  }
+};
+
 /// `[in_situ]`: an initial stress growing with depth below a ground surface, given to every
 /// material: sigma(y) = stress + gradient (surface - y), or with k0 syy = -unit_weight
 /// (surface - y), sxx = k0 syy, sxy = 0 (docs/case-file.md, "[in_situ]").
@@ -294,6 +328,8 @@ struct CaseSpec {
   std::vector<LoadSpec> loads;
   AnalysisSpec analysis;
   std::vector<MonitorSpec> monitors;
+  /// In the order of the case file.
+  std::vector<BoltSpec> bolts;
   OutputSpec output;
   /// `[fos]`: the strength reduction of `nmm fos` (defaults when absent).
   FosSpec fos;

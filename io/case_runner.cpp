@@ -8,6 +8,7 @@
 #include "io/cover_warnings.hpp"
 #include "io/gmsh_reader.hpp"
 #include "io/joint_sets.hpp"
+#include "io/scene_bolts.hpp"
 #include "io/step_output.hpp"
 #include "io/text.hpp"
 #include "io/vtk_writer.hpp"
@@ -595,6 +596,7 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase, double 
     scene.monitors.push_back({element, monitor.point});
     monitor_starts_.push_back(monitor.point);
   }
+  scene.bolts = place_bolts(spec_, physical, model_, tolerance);
 
   // A static analysis needs every body held (the stepper checks it too, without the line);
   // with contact, bodies may rest on each other (Shi's static keeps the inertia term).
@@ -765,6 +767,8 @@ void CaseAnalysis::add_unused_curve_warnings() {
   for (const LoadSpec& load : spec_.loads)
     if (load.kind == LoadKind::traction || load.kind == LoadKind::pressure)
       mark(load.target);
+  for (const BoltSpec& bolt : spec_.bolts)
+    mark(bolt.curve);
   for (std::size_t c = 0; c < physical.curves.size(); ++c) {
     if (used[c] != 0)
       continue;
@@ -1008,6 +1012,15 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
   std::vector<std::string> monitor_names;
   for (const MonitorSpec& m : spec.monitors)
     monitor_names.push_back(m.name);
+  std::vector<std::string> bolt_names;
+  for (const Bolt& bolt : stepper.scene().bolts)
+    bolt_names.push_back(bolt.name);
+  const auto bolt_forces = [&] {
+    std::vector<double> forces;
+    for (const Bolt& bolt : stepper.scene().bolts)
+      forces.push_back(bolt.force());
+    return forces;
+  };
   std::vector<std::string> restart_warnings;
   std::optional<CheckpointRun> restored;
   std::optional<HistoryWriter> history;
@@ -1036,7 +1049,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
           " monitors, the case has " + std::to_string(n_points) + " and " +
           std::to_string(spec.monitors.size()) + "; run the case from the start without --restart");
     analysis.restore_monitor_starts(restored->monitor_starts);
-    history.emplace(dir / "history.csv", monitor_names, restored->history_bytes);
+    history.emplace(dir / "history.csv", monitor_names, restored->history_bytes, bolt_names);
     blocks.emplace(model, restored->initial_points, region_names, dir / blocks_file_name,
                    restored->blocks_bytes, step_rates, speed_tolerance);
     blocks->restore(restored->block_motion);
@@ -1091,6 +1104,18 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     const std::vector<MonitorValues> values = analysis.monitor_values();
     for (std::size_t k = 0; k < values.size(); ++k)
       summary.monitors.emplace_back(spec.monitors[k].name, values[k]);
+    summary.bolts.clear();
+    for (const Bolt& bolt : stepper.scene().bolts) {
+      BoltSummary& item = summary.bolts.emplace_back();
+      item.name = bolt.name;
+      item.force = bolt.force();
+      item.state = bolt_state_name(bolt.state());
+      item.bars = static_cast<int>(bolt.bars.size());
+      for (const BoltBar& bar : bolt.bars) {
+        item.yielding_bars += bar.state == BoltState::yielding ? 1 : 0;
+        item.ruptured_bars += bar.state == BoltState::ruptured ? 1 : 0;
+      }
+    }
   };
   const fs::path summary_file = dir / "summary.json";
   update_summary("running");
@@ -1119,7 +1144,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
     result.output_steps = restored->output_steps;
     summary.max_penetration = restored->max_penetration;
   } else {
-    history.emplace(dir / "history.csv", monitor_names);
+    history.emplace(dir / "history.csv", monitor_names, bolt_names);
     if (spec.analysis.initial_equilibrium) {
       try {
         analysis.equilibrate();
@@ -1155,7 +1180,8 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       parts.push_back(dir / contact_file_name(number));
       write_vtp_points(parts.back(), make_contact_data(*contact, model, stepper.time()));
       parts.push_back(dir / boundary_file_name(number));
-      write_vtp_lines(parts.back(), make_boundary_step_data(model, stepper.time()));
+      write_vtp_lines(parts.back(),
+                      make_boundary_step_data(model, stepper.scene().bolts, stepper.time()));
     }
     pvd.add(stepper.time(), parts);
     blocks->write_step(number, stepper.time(), model, stepper);
@@ -1185,7 +1211,7 @@ RunResult run_case(CaseAnalysis& analysis, const RunOptions& options) {
       step = report.step;
       result.load_work = report.load_work;
       summary.max_penetration = std::max(summary.max_penetration, report.max_penetration);
-      history->write_row(report, analysis.monitor_values());
+      history->write_row(report, analysis.monitor_values(), bolt_forces());
       blocks->update(model, report.dt);
       // The stepper's warnings as they come (the energy balance's among them), not only in
       // the final list.

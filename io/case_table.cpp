@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: MIT
 #include "io/case_table.hpp"
 
+#include "io/text.hpp"
+
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <sstream>
 
@@ -156,6 +160,25 @@ std::vector<NamedTable> named_tables(const Context& context,
   std::sort(items.begin(), items.end(),
             [](const NamedTable& a, const NamedTable& b) { return a.position < b.position; });
   return items;
+}
+
+void check_column_name(const TableView& view, std::string_view key, const std::string& name) {
+  if (name.empty())
+    view.fail_at_value(key, view.subject(key) + " is empty; give a name of letters, digits and _");
+  const auto bad = std::find_if(name.begin(), name.end(), [](char c) {
+    return !(std::isalnum(static_cast<unsigned char>(c)) || c == '_');
+  });
+  if (bad != name.end()) {
+    std::string fixed = name;
+    for (char& c : fixed)
+      if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_'))
+        c = '_';
+    view.fail_at_value(key, view.subject(key) + " = " + in_quotes(name) + " contains '" +
+                                std::string(1, *bad) +
+                                "'; use only letters, digits and _ (it prefixes the "
+                                "history.csv columns), e.g. " +
+                                std::string(key) + " = " + in_quotes(fixed));
+  }
 }
 
 } // namespace nmm::case_table

@@ -356,6 +356,10 @@ private:
   std::span<const std::string_view> allowed_;
 };
 
+// Refuses a name @p name of @p key that is empty or has a character other than letters,
+// digits and _ (it prefixes history.csv columns: [[monitor]], [[bolt]]).
+void check_column_name(const TableView& view, std::string_view key, const std::string& name);
+
 // A table-valued top-level key ([cover_mesh], [analysis], ...), or nullptr when absent.
 [[nodiscard]] const toml::table*
 single_table(const Context& context, const toml::table& root, std::string_view key);

@@ -68,9 +68,31 @@ private:
   bool first_ = true;
 };
 
+/// Member @p name of @p root: an array of one object per item, each written by @p write
+/// (an empty array as []).
+template <class Items, class Write>
+void object_array(
+    JsonObject& root, std::string& out, std::string_view name, const Items& items, Write write) {
+  root.key(name);
+  out += '[';
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    out += k == 0 ? "\n" : ",\n";
+    out.append(static_cast<std::size_t>(root.inner_indent() + 2), ' ');
+    JsonObject item(out, root.inner_indent() + 2);
+    write(item, items[k]);
+    item.close();
+  }
+  if (!items.empty()) {
+    out += '\n';
+    out.append(static_cast<std::size_t>(root.inner_indent()), ' ');
+  }
+  out += ']';
+}
+
 } // namespace
 
-std::string history_header(std::span<const std::string> monitor_names) {
+std::string history_header(std::span<const std::string> monitor_names,
+                           std::span<const std::string> bolt_names) {
   std::string header = "step,time,dt,open_close_iterations,contacts,kinetic_energy";
   for (const std::string& name : monitor_names) {
     for (const std::string_view value : monitor_value_names) {
@@ -83,23 +105,33 @@ std::string history_header(std::span<const std::string> monitor_names) {
   // Columns added after the first release go last: readers that count columns keep working.
   header += ",load_work,step_cuts,max_penetration,lock_excess,slide_feed";
   header += ",external_work,strain_energy,contact_energy,dissipated_energy,energy_error";
+  for (const std::string& name : bolt_names)
+    header += "," + name + ".force";
   return header;
 }
 
-HistoryWriter::HistoryWriter(std::filesystem::path file, std::vector<std::string> monitor_names)
-    : n_monitors_(monitor_names.size()),
-      rows_(std::move(file), history_header(monitor_names) + '\n') {}
+HistoryWriter::HistoryWriter(std::filesystem::path file,
+                             std::vector<std::string> monitor_names,
+                             std::vector<std::string> bolt_names)
+    : n_monitors_(monitor_names.size()), n_bolts_(bolt_names.size()),
+      rows_(std::move(file), history_header(monitor_names, bolt_names) + '\n') {}
 
 HistoryWriter::HistoryWriter(std::filesystem::path file,
                              std::vector<std::string> monitor_names,
-                             std::uintmax_t keep_bytes)
-    : n_monitors_(monitor_names.size()), rows_(std::move(file),
-                                               history_header(monitor_names) + '\n',
-                                               "that of the case's monitors",
-                                               keep_bytes) {}
+                             std::uintmax_t keep_bytes,
+                             std::vector<std::string> bolt_names)
+    : n_monitors_(monitor_names.size()), n_bolts_(bolt_names.size()),
+      rows_(std::move(file),
+            history_header(monitor_names, bolt_names) + '\n',
+            bolt_names.empty() ? "that of the case's monitors"
+                               : "that of the case's monitors and bolts",
+            keep_bytes) {}
 
-void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorValues> monitors) {
+void HistoryWriter::write_row(const StepReport& report,
+                              std::span<const MonitorValues> monitors,
+                              std::span<const double> bolt_forces) {
   NMM_ASSERT(monitors.size() == n_monitors_, "one MonitorValues per monitor");
+  NMM_ASSERT(bolt_forces.size() == n_bolts_, "one force per bolt");
   std::string row;
   row.reserve(32 * (11 + 9 * monitors.size()));
   char field[64];
@@ -125,6 +157,8 @@ void HistoryWriter::write_row(const StepReport& report, std::span<const MonitorV
        {report.max_penetration, report.lock_excess, report.slide_feed, report.external_work,
         report.strain_energy, report.contact_energy, report.dissipated_energy, report.energy_error})
     number(value);
+  for (const double force : bolt_forces)
+    number(force);
   row += '\n';
   rows_.append(row,
                "the row of step " + std::to_string(report.step) + " (the rows before it stay)");
@@ -266,25 +300,22 @@ std::string summary_json(const RunSummary& s) {
   mesher.seconds("seconds_cut_triangles", s.mesher.seconds_cut_triangles);
   mesher.seconds("seconds_rest", s.mesher.seconds_rest);
   mesher.close();
-  if (s.moved_blocks) {
-    root.key("moved_blocks");
-    out += '[';
-    for (std::size_t k = 0; k < s.moved_blocks->size(); ++k) {
-      const MovedBlock& moved = (*s.moved_blocks)[k];
-      out += k == 0 ? "\n" : ",\n";
-      out.append(static_cast<std::size_t>(root.inner_indent() + 2), ' ');
-      JsonObject block(out, root.inner_indent() + 2);
-      block.integer("block", moved.block);
-      block.string("material", moved.material);
-      block.number("displacement", moved.displacement);
-      block.close();
-    }
-    if (!s.moved_blocks->empty()) {
-      out += '\n';
-      out.append(static_cast<std::size_t>(root.inner_indent()), ' ');
-    }
-    out += ']';
-  }
+  if (s.moved_blocks)
+    object_array(root, out, "moved_blocks", *s.moved_blocks,
+                 [](JsonObject& block, const MovedBlock& moved) {
+                   block.integer("block", moved.block);
+                   block.string("material", moved.material);
+                   block.number("displacement", moved.displacement);
+                 });
+  if (!s.bolts.empty())
+    object_array(root, out, "bolts", s.bolts, [](JsonObject& item, const BoltSummary& bolt) {
+      item.string("name", bolt.name);
+      item.number("force", bolt.force);
+      item.string("state", bolt.state);
+      item.integer("bars", bolt.bars);
+      item.integer("yielding_bars", bolt.yielding_bars);
+      item.integer("ruptured_bars", bolt.ruptured_bars);
+    });
   root.close();
   out += '\n';
   return out;

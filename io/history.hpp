@@ -44,8 +44,9 @@ inline constexpr std::array<std::string_view, 9> monitor_value_names{"x",  "y", 
 
 /// The header line of history.csv (without the newline): `step,time,dt,
 /// open_close_iterations,contacts,kinetic_energy` then `m.x,m.y,...,m.sxy` per monitor, then
-/// `load_work`.
-[[nodiscard]] std::string history_header(std::span<const std::string> monitor_names);
+/// `load_work` and the columns added since (docs/output.md), last `b.force` per bolt.
+[[nodiscard]] std::string history_header(std::span<const std::string> monitor_names,
+                                         std::span<const std::string> bolt_names = {});
 
 /// history.csv, written row by row, each row by one write(2) (no buffer), so that a run
 /// that stops at any moment leaves every completed step on disk; a row that the disk or a
@@ -55,7 +56,9 @@ class HistoryWriter {
 public:
   /// Creates (truncates) @p file and writes the header.
   /// @throws InputError naming the file when it cannot be written.
-  HistoryWriter(std::filesystem::path file, std::vector<std::string> monitor_names);
+  HistoryWriter(std::filesystem::path file,
+                std::vector<std::string> monitor_names,
+                std::vector<std::string> bolt_names = {});
   /// Continues @p file after a restart: keeps its first @p keep_bytes bytes (the header and
   /// the rows up to the checkpoint's step; bytes() when the checkpoint was written), drops
   /// the rest (rows the interrupted run wrote after it) and appends after them.
@@ -63,12 +66,15 @@ public:
   ///         does not end a row there, or its header is not the one of @p monitor_names.
   HistoryWriter(std::filesystem::path file,
                 std::vector<std::string> monitor_names,
-                std::uintmax_t keep_bytes);
+                std::uintmax_t keep_bytes,
+                std::vector<std::string> bolt_names = {});
   /// Appends the row of one step, whole or not at all.
-  /// @pre monitors.size() == the number of monitor names.
+  /// @pre monitors.size() == the number of monitor names, bolt_forces.size() that of bolts.
   /// @throws OutputWriteError naming the file and the reason ("disk full: ...", "file too
   ///         large: ...") when the write fails; the file then ends with the row before.
-  void write_row(const StepReport& report, std::span<const MonitorValues> monitors);
+  void write_row(const StepReport& report,
+                 std::span<const MonitorValues> monitors,
+                 std::span<const double> bolt_forces = {});
 
   [[nodiscard]] const std::filesystem::path& file() const noexcept { return rows_.file(); }
   /// Size of the file so far: header and every row written, bytes.
@@ -76,6 +82,7 @@ public:
 
 private:
   std::size_t n_monitors_ = 0;
+  std::size_t n_bolts_ = 0;
   RowFile rows_;
 };
 
@@ -84,6 +91,16 @@ struct MovedBlock {
   int block = 0;             ///< the block id (blocks.csv, the step files' cell array `block`)
   std::string material;      ///< its material (blocks.csv's `material`)
   double displacement = 0.0; ///< length of its centroid's displacement since the start, m
+};
+
+/// A bolt at the last completed step (summary.json's bolts).
+struct BoltSummary {
+  std::string name;
+  double force = 0.0;    ///< Bolt::force(), N (per metre in plane strain), tension positive
+  std::string state;     ///< bolt_state_name() of Bolt::state()
+  int bars = 0;          ///< its bars: 1 end-anchored, one per element crossed grouted
+  int yielding_bars = 0; ///< of those, yielding at the step
+  int ruptured_bars = 0; ///< of those, broken
 };
 
 /// Everything summary.json holds. The first group of members is DESIGN.md's contract, the
@@ -120,6 +137,8 @@ struct RunSummary {
   /// The blocks that moved farther than `[output] moved_threshold`, by block id; no value
   /// (and no key in summary.json) without that key.
   std::optional<std::vector<MovedBlock>> moved_blocks;
+  /// The case's bolts, in the order of history.csv's columns; no key without bolts.
+  std::vector<BoltSummary> bolts;
 };
 
 /// summary.json's text: an object with the keys in the order of RunSummary, two-space

@@ -11,8 +11,10 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
+#include <variant>
 
 namespace nmm {
 namespace {
@@ -229,8 +231,61 @@ PointCloudData make_contact_data(const ContactSystem& contact, const Model& mode
   return data;
 }
 
-PolylineData make_boundary_step_data(const Model& model, double time) {
+namespace {
+
+std::vector<std::int32_t> integers_of(const DataArrays& arrays, std::string_view name) {
+  const DataArray* array = arrays.find(name);
+  NMM_ASSERT(array != nullptr && array->is_integer(), "the boundary's integer cell arrays");
+  return std::get<std::vector<std::int32_t>>(array->values);
+}
+
+/// Appends a line per bar of @p bolts to the boundary's polylines, and the cell arrays
+/// `bolt` (its index, -1 on the loops), `axial_force` (N, tension positive; 0 on the loops)
+/// and `bolt_state` (0 elastic, 1 yielding, 2 ruptured; -1 on the loops).
+void add_bolt_lines(std::span<const Bolt> bolts, PolylineData& data) {
+  std::vector<std::int32_t> block = integers_of(data.cell_data, "block");
+  std::vector<std::int32_t> joint = integers_of(data.cell_data, "joint");
+  std::vector<std::int32_t> loop = integers_of(data.cell_data, "loop");
+  const std::size_t loops = data.lines.size();
+  std::vector<std::int32_t> bolt(loops, -1);
+  std::vector<std::int32_t> state(loops, -1);
+  std::vector<double> force(loops, 0.0);
+  std::vector<std::string> names;
+  for (std::size_t b = 0; b < bolts.size(); ++b) {
+    names.push_back(std::to_string(b) + " " + bolts[b].name);
+    for (const BoltBar& bar : bolts[b].bars) {
+      const auto first = static_cast<int>(data.points.size());
+      data.points.push_back(bar.a.position);
+      data.points.push_back(bar.b.position);
+      data.lines.push_back({first, first + 1});
+      block.push_back(-1);
+      joint.push_back(-1);
+      loop.push_back(-1);
+      bolt.push_back(static_cast<std::int32_t>(b));
+      state.push_back(static_cast<std::int32_t>(bar.state));
+      force.push_back(bar.force);
+    }
+  }
+  DataArrays cells;
+  cells.add("block", std::move(block))
+      .add("joint", std::move(joint))
+      .add("loop", std::move(loop))
+      .add("bolt", std::move(bolt))
+      .add("axial_force", std::move(force))
+      .add("bolt_state", std::move(state));
+  data.cell_data = std::move(cells);
+  std::vector<std::string> legend;
+  for (const BoltState s : {BoltState::elastic, BoltState::yielding, BoltState::ruptured})
+    legend.push_back(std::to_string(static_cast<int>(s)) + " " + bolt_state_name(s));
+  data.field_data.add("bolt_names", std::move(names)).add("bolt_state_legend", std::move(legend));
+}
+
+} // namespace
+
+PolylineData make_boundary_step_data(const Model& model, std::span<const Bolt> bolts, double time) {
   PolylineData data = make_boundary_data(model.loops);
+  if (!bolts.empty())
+    add_bolt_lines(bolts, data);
   data.field_data.add_value("TimeValue", time);
   return data;
 }

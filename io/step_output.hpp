@@ -5,6 +5,7 @@
 
 #include "contact/contact_system.hpp"
 #include "io/vtk_writer.hpp"
+#include "manifold/bolt.hpp"
 #include "manifold/model.hpp"
 
 #include <Eigen/Core>
@@ -88,8 +89,13 @@ make_contact_data(const ContactSystem& contact, const Model& model, double time)
 /// The joints and free boundaries of every block at their current position as polylines
 /// for write_vtp_lines() (make_boundary_data() of Model::loops): both faces of an opening or
 /// sliding joint are drawn, each moving with its own block. Cell data `block`, `joint`
-/// (named curve, -1 on a free boundary), `loop`; field data `TimeValue` (s).
-[[nodiscard]] PolylineData make_boundary_step_data(const Model& model, double time);
+/// (named curve, -1 on a free boundary), `loop`; field data `TimeValue` (s). With @p bolts,
+/// a line per bolt bar after the loops (block, joint and loop -1 on them) and the cell data
+/// `bolt` (index in history.csv's order, -1 on the loops), `axial_force` (N, tension
+/// positive) and `bolt_state` (0 elastic, 1 yielding, 2 ruptured; -1 on the loops); field
+/// data `bolt_names` ("0 B1", ...) and `bolt_state_legend`.
+[[nodiscard]] PolylineData
+make_boundary_step_data(const Model& model, std::span<const Bolt> bolts, double time);
 
 /// `boundary_NNNNNN.vtp`: the step number with at least 6 digits.
 [[nodiscard]] std::string boundary_file_name(long step);

@@ -45,6 +45,7 @@ void account_energy(const StepContext& context,
                     const Eigen::VectorXd& raw,
                     double dt,
                     double kinetic,
+                    const BoltWork& bolts,
                     EnergyLedger& ledger,
                     StepReport& report) {
   const Model& model = context.model;
@@ -99,11 +100,14 @@ void account_energy(const StepContext& context,
     ledger.strain_energy += half - stress_load.dot(values);
     quadratic += half;
   }
+  // The bolts' bars: elastic energy and what yielding and rupture took out.
+  ledger.strain_energy += bolts.elastic_change;
+  ledger.dissipated += bolts.dissipated;
   // With the inertia term, the equilibrium at the end of the step (v1 = 2d/dt - v0, Shi eq.
   // 2.18-2.19) dissipates d K d / 2 of every step; Shi's static step also discards the
   // kinetic energy of its end velocity 2d/dt.
   if (kind.with_mass) {
-    ledger.dissipated += quadratic;
+    ledger.dissipated += quadratic + bolts.quadratic;
     if (!kind.dynamic)
       ledger.dissipated += kinetic_energy(model, state.element_mass, (2.0 / dt) * raw);
   }

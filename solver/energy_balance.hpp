@@ -34,7 +34,8 @@ struct EnergyLedger {
 };
 
 /// The step just accepted, of time step @p dt, displacement @p raw, external loads
-/// @p external (StepSystem::external) and new kinetic energy @p kinetic, into
+/// @p external (StepSystem::external), new kinetic energy @p kinetic and what the bolts'
+/// bars did (@p bolts, advance_bolts(): their elastic energy counts as strain energy), into
 /// @p ledger and @p report's energy fields. @p state: the step system's element masses (the
 /// element matrices are integrated again for the strain energy). Call before the contacts'
 /// end_step() and before the stresses and geometry move. The initial equilibrium only
@@ -45,6 +46,7 @@ void account_energy(const StepContext& context,
                     const Eigen::VectorXd& raw,
                     double dt,
                     double kinetic,
+                    const BoltWork& bolts,
                     EnergyLedger& ledger,
                     StepReport& report);
 

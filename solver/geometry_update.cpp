@@ -18,6 +18,12 @@ void update_geometry(
     points.push_back(l.point);
   for (const MaterialPoint& p : scene.monitors)
     points.push_back(p);
+  for (const Bolt& bolt : scene.bolts) {
+    for (const BoltBar& bar : bolt.bars) {
+      points.push_back(bar.a);
+      points.push_back(bar.b);
+    }
+  }
   model.move(raw, points);
   std::size_t k = 0;
   for (SupportPoint& s : scene.supports)
@@ -27,6 +33,12 @@ void update_geometry(
     l.point = points[k++];
   for (MaterialPoint& p : scene.monitors)
     p = points[k++];
+  for (Bolt& bolt : scene.bolts) {
+    for (BoltBar& bar : bolt.bars) {
+      bar.a = points[k++];
+      bar.b = points[k++];
+    }
+  }
 }
 
 } // namespace nmm

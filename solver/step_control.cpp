@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "solver/step_control.hpp"
 
+#include "manifold/bolt.hpp"
 #include "manifold/boundary_conditions.hpp"
 #include "mesh/error.hpp"
 
@@ -223,7 +224,9 @@ TryVerdict judge_energy(const StepContext& context,
   // cannot cure it, rather than carry on with a meaningless answer.
   const Model& model = context.model;
   if (!energy.started) {
-    energy.start_energy += kinetic_energy(model, element_mass, context.velocity);
+    // (with what the bolts' pretension stores)
+    energy.start_energy +=
+        kinetic_energy(model, element_mass, context.velocity) + elastic_energy(context.scene.bolts);
     energy.started = true;
   }
   // Shi eq. 2.18-2.19: v1 = 2 d / dt - v0.

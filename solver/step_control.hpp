@@ -19,9 +19,9 @@ namespace nmm {
 
 /// The energy check's budget, kept through the run.
 struct EnergyBudget {
-  /// Kinetic energy at the first dynamic step plus the work of the loads in the initial
-  /// equilibrium (stored in the springs, released later), J: with load_work, the most
-  /// kinetic energy the run can have.
+  /// Kinetic energy and the bolts' elastic energy at the first dynamic step plus the work of
+  /// the loads in the initial equilibrium (stored in the springs, released later), J: with
+  /// load_work, the most kinetic energy the run can have.
   double start_energy = 0.0;
   bool started = false;   ///< start_energy has the first dynamic step's kinetic energy
   double load_work = 0.0; ///< StepReport::load_work

@@ -97,6 +97,20 @@ make_couplings(const StepContext& context, const DofMap& map, std::size_t expect
       c.spring_of.push_back(static_cast<int>(s));
     }
   }
+  c.first_bar_plan = static_cast<int>(model.elements.size() + c.spring_of.size());
+  for (const Bolt& bolt : context.scene.bolts) {
+    for (const BoltBar& bar : bolt.bars) {
+      append_bar_dofs(model, bar, c.bar_dofs);
+      c.bar_start.push_back(static_cast<int>(c.bar_dofs.size()));
+      Reduction r;
+      c.bar_transform.push_back(-1);
+      if (!reduce(map, c.bar_unknowns(c.bar_transform.size() - 1), c.flat, r)) {
+        c.bar_transform.back() = static_cast<int>(c.transforms.size());
+        c.transforms.push_back(std::move(r));
+      }
+      c.starts.push_back(static_cast<int>(c.flat.size()));
+    }
+  }
   if (context.contact) {
     context.contact->prepare_kinematics(model);
     for (int i = 0; i < context.contact->n_points(); ++i) {
@@ -111,7 +125,7 @@ make_couplings(const StepContext& context, const DofMap& map, std::size_t expect
       c.starts.push_back(static_cast<int>(c.flat.size()));
     }
   }
-  c.first_contact_plan = static_cast<int>(model.elements.size() + c.spring_of.size());
+  c.first_contact_plan = c.first_bar_plan + static_cast<int>(c.bar_transform.size());
   return c;
 }
 
@@ -230,8 +244,27 @@ void assemble_element(const StepContext& context,
   system.scatter(*state.stiffness, e, work.local, system.couplings.transform_of[at(e)]);
 }
 
-/// The loads of the end of the step, the elements and the penalty supports, into the state's
-/// assembler and @p system's loads.
+/// The bolts' bars (bar_spring()): their stiffness into @p a, their forces into the loads.
+void assemble_bolts(const StepContext& context, Assembler& a, StepSystem& system) {
+  const StepCouplings& couplings = system.couplings;
+  Eigen::MatrixXd stiffness;
+  Eigen::VectorXd load;
+  std::size_t j = 0;
+  for (const Bolt& bolt : context.scene.bolts) {
+    for (const BoltBar& bar : bolt.bars) {
+      bar_spring(context.model, bolt, bar, stiffness, load);
+      const std::span<const int> dofs = couplings.bar_unknowns(j);
+      for (std::size_t i = 0; i < dofs.size(); ++i)
+        system.f(dofs[i]) += load(static_cast<Eigen::Index>(i));
+      system.scatter(a, couplings.first_bar_plan + static_cast<int>(j), stiffness,
+                     couplings.bar_transform[j]);
+      ++j;
+    }
+  }
+}
+
+/// The loads of the end of the step, the elements, the penalty supports and the bolts, into the
+/// state's assembler and @p system's loads.
 void assemble_step(const StepContext& context,
                    double dt,
                    StepSystemState& state,
@@ -267,6 +300,7 @@ void assemble_step(const StepContext& context,
     system.scatter(a, static_cast<int>(model.elements.size() + s), spring.stiffness,
                    system.couplings.transform_of[at(support.point.element)]);
   }
+  assemble_bolts(context, a, system);
 }
 
 } // namespace

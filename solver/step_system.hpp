@@ -29,8 +29,9 @@ struct Reduction {
 };
 
 /// The reduced unknowns of every coupling of a try: the elements, then the penalty supports
-/// (the same unknowns as their element), then the contact points found at the start of the
-/// step. Only couplings with slaves get a transform.
+/// (the same unknowns as their element), then the bolts' bars (those of the elements of
+/// their ends), then the contact points found at the start of the step. Only couplings
+/// with slaves get a transform.
 struct StepCouplings {
   /// Coupling k couples flat[starts[k]...starts[k + 1]).
   std::vector<int> starts{0};
@@ -38,6 +39,12 @@ struct StepCouplings {
   std::vector<int> transform_of; ///< element -> index in transforms, -1: all free
   std::vector<Reduction> transforms;
   std::vector<int> spring_of; ///< support index of each penalty coupling
+  /// The raw unknowns of bar j (the scene's bolts' bars in order):
+  /// bar_dofs[bar_start[j]...bar_start[j + 1]).
+  std::vector<int> bar_dofs;
+  std::vector<int> bar_start{0};
+  std::vector<int> bar_transform; ///< bar -> index in transforms, -1: all free
+  int first_bar_plan = 0;         ///< the plan (and coupling) of bar 0
   /// The raw unknowns of contact point i: contact_dofs[contact_start[i]...contact_start[i + 1]).
   std::vector<int> contact_dofs;
   std::vector<int> contact_start{0};
@@ -46,6 +53,10 @@ struct StepCouplings {
 
   [[nodiscard]] std::span<const int> coupling(std::size_t k) const {
     return {flat.data() + starts[k], static_cast<std::size_t>(starts[k + 1] - starts[k])};
+  }
+  [[nodiscard]] std::span<const int> bar_unknowns(std::size_t j) const {
+    return {bar_dofs.data() + bar_start[j],
+            static_cast<std::size_t>(bar_start[j + 1] - bar_start[j])};
   }
   [[nodiscard]] std::span<const int> contact_point_dofs(int i) const {
     const auto k = static_cast<std::size_t>(i);

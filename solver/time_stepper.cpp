@@ -236,8 +236,9 @@ StepReport TimeStepper::advance(double until, bool equilibrium) {
   if (!equilibrium)
     impl_->energy.load_work += solution.work;
   report.load_work = impl_->energy.load_work;
+  const BoltWork bolts = advance_bolts(model_, scene_.bolts, solution.raw);
   account_energy(context, impl_->system, solution.external, solution.raw, tries.dt,
-                 solution.kinetic, impl_->ledger, report);
+                 solution.kinetic, bolts, impl_->ledger, report);
   if (!equilibrium)
     judge_balance(context, report, solution.new_velocity, solution.largest, impl_->ledger.warned);
   clock.lap(counters_.seconds_step_control);
@@ -406,6 +407,19 @@ void TimeStepper::save_state(StateWriter& out) const {
   out.put_count(scene_.monitors.size());
   for (const MaterialPoint& p : scene_.monitors)
     save_point(out, p);
+  if (!scene_.bolts.empty()) { // (a case without bolts keeps its checkpoint's layout)
+    out.section("BOLT");
+    for (const Bolt& bolt : scene_.bolts) {
+      out.put_count(bolt.bars.size());
+      for (const BoltBar& bar : bolt.bars) {
+        save_point(out, bar.a);
+        save_point(out, bar.b);
+        out.put(bar.force);
+        out.put(bar.yield_force);
+        out.put(static_cast<std::int64_t>(bar.state));
+      }
+    }
+  }
   out.put(impl_->energy.start_energy);
   out.put(impl_->energy.started);
   out.put(impl_->energy.load_work);
@@ -456,6 +470,22 @@ void TimeStepper::load_state(StateReader& in) {
   in.expect_count(scene_.monitors.size(), "monitors");
   for (MaterialPoint& p : scene_.monitors)
     load_point(in, p, model_.n_elements());
+  if (!scene_.bolts.empty()) {
+    in.section("BOLT");
+    for (Bolt& bolt : scene_.bolts) {
+      in.expect_count(bolt.bars.size(), "bars of bolt \"" + bolt.name + "\"");
+      for (BoltBar& bar : bolt.bars) {
+        load_point(in, bar.a, model_.n_elements());
+        load_point(in, bar.b, model_.n_elements());
+        bar.force = in.real();
+        bar.yield_force = in.real();
+        const std::int64_t state = in.integer();
+        if (state < 0 || state > static_cast<std::int64_t>(BoltState::ruptured))
+          in.fail("a bolt bar in state " + std::to_string(state));
+        bar.state = static_cast<BoltState>(state);
+      }
+    }
+  }
   impl_->energy.start_energy = in.real();
   impl_->energy.started = in.boolean();
   impl_->energy.load_work = in.real();

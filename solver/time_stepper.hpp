@@ -7,6 +7,7 @@
 #pragma once
 
 #include "contact/contact_system.hpp"
+#include "manifold/bolt.hpp"
 #include "manifold/boundary_conditions.hpp"
 #include "manifold/model.hpp"
 #include "solver/dof_map.hpp"
@@ -87,6 +88,9 @@ struct Scene {
   std::vector<CurveLoad> curve_loads;
   /// Material points followed for monitors (moved with the material every step).
   std::vector<MaterialPoint> monitors;
+  /// Rock bolts: their bars couple the elements of their ends, their forces change with the
+  /// steps (advance_bolts()).
+  std::vector<Bolt> bolts;
 };
 
 /// One completed step (a row of history.csv).
