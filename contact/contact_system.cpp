@@ -632,6 +632,8 @@ int ContactSystem::n_sliding() const {
 }
 
 std::vector<ContactSystem::Place> ContactSystem::current_places(const Model& model) const {
+  if (points_.empty())
+    return {}; // (before the first step too, when begin_step() has numbered nothing yet)
   // The boundary numbered as begin_step() numbers it, at its current place.
   const ContactBoundary now = contact_boundary(model);
   const std::vector<Point2>& position = now.position;
