@@ -115,6 +115,7 @@ void ContactSystem::set_up_boundary(const Model& model) {
   edge_bonded_.clear();
   edge_joint_.clear();
   edge_material_.clear();
+  edge_excavated_.clear();
   materials_ = model.materials;
   for (std::size_t l = 0; l < model.loops.size(); ++l) {
     const BoundaryLoop& loop = model.loops[l];
@@ -125,6 +126,8 @@ void ContactSystem::set_up_boundary(const Model& model) {
       edge_bonded_.push_back(law_->is_bonded(l, at(k)) ? 1 : 0);
       edge_joint_.push_back(edge.joint);
       edge_material_.push_back(edge.element >= 0 ? model.elements[at(edge.element)].material : -1);
+      edge_excavated_.push_back(
+          edge.element >= 0 && model.elements[at(edge.element)].excavated ? 1 : 0);
     }
   }
 }
@@ -191,6 +194,11 @@ void ContactSystem::add_contact(const ContactCandidate& c,
   // represents that part of the joint; a point spring there would be a second, concentrated
   // one on the same place, representing no length (docs/formulation.md, "Joint strength").
   if (c.kind != ContactKind::edge_edge && c.end_face >= 0 && bonded_face(c.end_face, c.end_beyond))
+    return;
+  // Excavated material touches nothing: no contact on its edges (an angle's two edges).
+  const auto gone = [&](int edge) { return edge >= 0 && edge_excavated_[at(edge)] != 0; };
+  if (gone(c.slave) || gone(c.master) || gone(c.alternative_slave) || gone(c.alternative_master) ||
+      (c.kind != ContactKind::edge_edge && gone(boundary_.previous[at(c.slave)])))
     return;
   Group g;
   g.key = c.key();

@@ -655,6 +655,8 @@ private:
   /// element's material (-1: none), whose initial stress the joint's springs carry.
   std::vector<int> edge_joint_;
   std::vector<int> edge_material_;
+  /// 1 for an edge of an excavated element (ModelElement::excavated): no contact on it.
+  std::vector<char> edge_excavated_;
   /// The model's materials (their initial stress fields), as of the step's start.
   std::vector<ElasticMaterial> materials_;
   /// Shapes of the elements the contact points' edges belong to, built once per step (the

@@ -104,8 +104,8 @@ private:
 /// m/s) -> resting; no closed contact and no support -> free; the instantaneous centre of
 /// rotation inside the circle of radius `radius` about the centroid (|vc| < |omega| radius)
 /// -> rotating; a contact of the block sliding -> sliding; else resting (moving with its
-/// contacts locked: carried, or vibrating on its springs). `excavated` is for blocks
-/// removed by a stage (not produced yet).
+/// contacts locked: carried, or vibrating on its springs); a block all of whose elements a
+/// `[[stage]]` excavated -> excavated.
 /// @param contact  the contacts of the last step; null when the model has none.
 [[nodiscard]] std::vector<BlockState> block_states(const Model& model,
                                                    const ContactSystem* contact,

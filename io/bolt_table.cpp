@@ -103,7 +103,9 @@ void read_strength(Context& context, const TableView& view, BoltSpec& bolt) {
                      "rupture force, or rupture_force <= yield_force for a brittle one");
 }
 
-BoltSpec read_bolt(Context& context, const toml::table& table, std::size_t index) {
+} // namespace
+
+BoltSpec read_bolt_table(Context& context, const toml::table& table, std::size_t index) {
   const TableView view(context, table, "[[bolt]]", bolt_keys);
   BoltSpec bolt;
   bolt.line = view.position().line;
@@ -117,20 +119,23 @@ BoltSpec read_bolt(Context& context, const toml::table& table, std::size_t index
   return bolt;
 }
 
-} // namespace
+void check_bolt_names(Context& context, const std::vector<BoltSpec>& bolts) {
+  for (std::size_t i = 0; i < bolts.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (bolts[j].name == bolts[i].name)
+        context.fail({bolts[i].line, 1}, "[[bolt]] name " + in_quotes(bolts[i].name) +
+                                             " is already used by the [[bolt]] at line " +
+                                             std::to_string(bolts[j].line) +
+                                             "; give each bolt a unique name");
+    }
+  }
+}
 
 std::vector<BoltSpec> read_bolt_tables(Context& context, const toml::table& root) {
   std::vector<BoltSpec> bolts;
-  for (const toml::table* table : table_array(context, root, "bolt")) {
-    bolts.push_back(read_bolt(context, *table, bolts.size()));
-    for (std::size_t j = 0; j + 1 < bolts.size(); ++j) {
-      if (bolts[j].name == bolts.back().name)
-        context.fail(position_of(table->source()), "[[bolt]] name " + in_quotes(bolts.back().name) +
-                                                       " is already used by the [[bolt]] at line " +
-                                                       std::to_string(bolts[j].line) +
-                                                       "; give each bolt a unique name");
-    }
-  }
+  for (const toml::table* table : table_array(context, root, "bolt"))
+    bolts.push_back(read_bolt_table(context, *table, bolts.size()));
+  check_bolt_names(context, bolts);
   return bolts;
 }
 

@@ -19,6 +19,14 @@ inline constexpr std::string_view bolt_keys[] = {
     "name",  "from", "to",         "curve",       "kind",          "stiffness",
     "young", "area", "pretension", "yield_force", "rupture_force", "hardening"};
 
+/// Reads one `[[bolt]]` table (or `[[stage.bolt]]`), the @p index th of the case (its
+/// default name "bolt" + (index + 1)). @throws InputError as read_bolt_tables().
+[[nodiscard]] BoltSpec
+read_bolt_table(Context& context, const toml::table& table, std::size_t index);
+
+/// Refuses two bolts of @p bolts with one name, at the line of the second.
+void check_bolt_names(Context& context, const std::vector<BoltSpec>& bolts);
+
 /// Reads every `[[bolt]]` table, in the order of the file.
 /// @throws InputError naming the file, line and key: both or neither of from/to and curve,
 ///         both or neither of stiffness and young/area, values out of range, a pretension

@@ -52,7 +52,7 @@ constexpr std::string_view top_level_keys[] = {"geometry",   "title",     "geome
                                                "contact",    "boundary",  "load",
                                                "analysis",   "monitor",   "output",
                                                "joint_set",  "fos",       "in_situ",
-                                               "bolt"};
+                                               "bolt",       "stage"};
 constexpr std::string_view cover_mesh_keys[] = {
     "kind",          "size", "order", "max_triangles", "min_cover_area_ratio", "curve_tolerance",
     "geometry_sizes"};
@@ -90,6 +90,8 @@ constexpr std::string_view analysis_keys[] = {"kind",
                                               "energy_error_limit",
                                               "velocity_ratio"};
 constexpr std::string_view monitor_keys[] = {"name", "point"};
+constexpr std::string_view stage_keys[] = {
+    "name", "steps", "kind", "excavate", "reset_displacement", "load", "boundary", "bolt"};
 constexpr std::string_view output_keys[] = {"dir", "every", "checkpoint_every", "moved_threshold"};
 
 constexpr TableKeys all_tables[] = {
@@ -100,6 +102,7 @@ constexpr TableKeys all_tables[] = {
     {"[analysis]", analysis_keys},       {"[[monitor]]", monitor_keys},
     {"[output]", output_keys},           {"[fos]", fos_keys},
     {"[in_situ]", in_situ_keys},         {"[[bolt]]", bolt_keys},
+    {"[[stage]]", stage_keys},
 };
 
 constexpr std::string_view cover_mesh_kinds[] = {"regular", "gmsh"};
@@ -376,7 +379,7 @@ constexpr const char* penalty_too_large =
     "(next to them the elements' stiffness is below what double precision holds, so the "
     "bodies they hold look free); Shi uses 10 to 100, nmm's default is 40";
 
-AnalysisSpec read_analysis(Context& context, const toml::table& root) {
+AnalysisSpec read_analysis(Context& context, const toml::table& root, bool staged) {
   const toml::table* table = single_table(context, root, "analysis");
   if (!table)
     context.fail({1, 1}, "the case file has no [analysis] table; add one with at least "
@@ -385,9 +388,12 @@ AnalysisSpec read_analysis(Context& context, const toml::table& root) {
   AnalysisSpec spec;
   spec.kind = static_cast<AnalysisKind>(view.choice("kind", analysis_kinds, 0));
   const std::optional<std::int64_t> steps = view.integer("steps", 1, 100'000'000, "2000");
-  if (!steps)
+  if (staged && steps)
+    view.fail_at_key("steps", "[analysis] steps cannot be given with [[stage]] tables: each "
+                              "stage gives its own steps; remove it");
+  if (!staged && !steps)
     view.fail_missing("steps", "the number of time steps, 1 to 1e8", "2000");
-  spec.steps = static_cast<int>(*steps);
+  spec.steps = static_cast<int>(steps.value_or(0)); // (staged: the stages' sum, later)
   spec.time_step_line = view.key_position("time_step").line;
   spec.time_step =
       view.time_step("time_step", "1.0e-3",
@@ -478,6 +484,72 @@ MonitorSpec read_monitor(Context& context, const toml::table& table) {
   return spec;
 }
 
+/// One `[[stage]]` and the `[[stage.load]]`, `[[stage.boundary]]` and `[[stage.bolt]]`
+/// under it (tagged with its index @p index) into @p spec.
+StageSpec read_stage(Context& context, const toml::table& table, int index, CaseSpec& spec) {
+  const TableView view(context, table, "[[stage]]", stage_keys);
+  StageSpec stage;
+  stage.line = view.position().line;
+  const std::optional<std::string> name = view.string("name", "the stage's name", "\"excavate\"");
+  if (!name)
+    view.fail_missing("name", "a unique name of letters, digits and _", "\"excavate\"");
+  check_column_name(view, "name", *name);
+  stage.name = *name;
+  const std::optional<std::int64_t> steps = view.integer("steps", 1, 100'000'000, "200");
+  if (!steps)
+    view.fail_missing("steps", "the number of time steps of the stage, 1 to 1e8", "200");
+  stage.steps = static_cast<int>(*steps);
+  if (view.has("kind"))
+    stage.kind = static_cast<AnalysisKind>(view.choice("kind", analysis_kinds, 0));
+  if (const toml::node* node = view.find("excavate")) {
+    const toml::array* names = node->as_array();
+    if (names == nullptr)
+      view.fail_at_value("excavate", "[[stage]] excavate must be a list of Physical Surface "
+                                     "names, e.g. excavate = [\"tunnel\"]");
+    for (const toml::node& item : *names) {
+      const auto* text = item.as_string();
+      if (text == nullptr || text->get().empty())
+        context.fail(position_of(item.source()),
+                     "[[stage]] excavate must list Physical Surface names in double quotes, "
+                     "e.g. excavate = [\"tunnel\"]");
+      stage.excavate.push_back(text->get());
+    }
+  }
+  stage.reset_displacement = view.boolean_or("reset_displacement", false);
+  for (const toml::table* t : table_array(context, table, "boundary"))
+    spec.boundaries.emplace_back(read_boundary(context, *t)).stage = index;
+  for (const toml::table* t : table_array(context, table, "load"))
+    spec.loads.emplace_back(read_load(context, *t)).stage = index;
+  for (const toml::table* t : table_array(context, table, "bolt"))
+    spec.bolts.emplace_back(read_bolt_table(context, *t, spec.bolts.size())).stage = index;
+  return stage;
+}
+
+/// Every `[[stage]]`: names unique, the steps summed into [analysis] steps.
+void read_stages(Context& context, const toml::table& root, CaseSpec& spec) {
+  for (const toml::table* table : table_array(context, root, "stage")) {
+    spec.stages.push_back(read_stage(context, *table, static_cast<int>(spec.stages.size()), spec));
+    const StageSpec& stage = spec.stages.back();
+    for (std::size_t j = 0; j + 1 < spec.stages.size(); ++j) {
+      if (spec.stages[j].name == stage.name)
+        context.fail({stage.line, 1}, "[[stage]] name " + in_quotes(stage.name) +
+                                          " is already used by the [[stage]] at line " +
+                                          std::to_string(spec.stages[j].line) +
+                                          "; give each stage a unique name");
+    }
+  }
+  std::int64_t total = 0;
+  for (const StageSpec& stage : spec.stages)
+    total += stage.steps;
+  if (total > 100'000'000)
+    context.fail({spec.stages.back().line, 1},
+                 "the stages have " + std::to_string(total) +
+                     " steps in all, more than 1e8; give fewer steps");
+  if (!spec.stages.empty())
+    spec.analysis.steps = static_cast<int>(total);
+  check_bolt_names(context, spec.bolts);
+}
+
 OutputSpec read_output(Context& context, const toml::table& root, const std::string& file) {
   OutputSpec spec;
   spec.dir = resolve(file, "out");
@@ -526,11 +598,18 @@ void check_whole_case(Context& context,
   for (const MaterialRead& read : materials) {
     const MaterialSpec& material = read.spec;
     if (!read.has_density) {
-      if (spec.analysis.kind == AnalysisKind::dynamic)
+      const bool dynamic_stage =
+          std::any_of(spec.stages.begin(), spec.stages.end(),
+                      [](const StageSpec& stage) { return stage.kind == AnalysisKind::dynamic; });
+      if (spec.analysis.kind == AnalysisKind::dynamic && !dynamic_stage)
         context.fail(read.position,
                      "[materials." + material.name +
                          "] is missing density (kg/m^3), which a dynamic analysis needs; add "
                          "e.g. density = 2600.0, or set [analysis] kind = \"static\"");
+      if (dynamic_stage)
+        context.fail(read.position, "[materials." + material.name +
+                                        "] is missing density (kg/m^3), which a [[stage]] of "
+                                        "kind = \"dynamic\" needs; add e.g. density = 2600.0");
       if (gravity)
         context.fail(read.position,
                      "[materials." + material.name +
@@ -673,7 +752,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
   for (const toml::table* table : table_array(context, root, "load"))
     spec.loads.push_back(read_load(context, *table));
 
-  spec.analysis = read_analysis(context, root);
+  spec.analysis = read_analysis(context, root, root.get("stage") != nullptr);
 
   std::vector<Position> monitor_name_positions;
   for (const toml::table* table : table_array(context, root, "monitor")) {
@@ -682,6 +761,7 @@ CaseSpec read_case(Context& context, const toml::table& root, const std::string&
   }
 
   spec.bolts = read_bolt_tables(context, root);
+  read_stages(context, root, spec);
 
   spec.output = read_output(context, root, file);
   spec.fos = read_fos_table(context, root);

@@ -152,6 +152,8 @@ struct BoundarySpec {
   SupportMethod method = SupportMethod::exact;
   /// Line of this `[[boundary]]` header in the case file.
   int line = 0;
+  /// The `[[stage]]` it starts with (a `[[stage.boundary]]`), 0: from the start.
+  int stage = 0;
 };
 
 /// `[[load]]`: one load with an optional linear ramp in time.
@@ -175,6 +177,8 @@ struct LoadSpec {
   double ramp_end = 0.0;
   /// Line of this `[[load]]` header in the case file.
   int line = 0;
+  /// The `[[stage]]` it starts with (a `[[stage.load]]`), 0: from the start.
+  int stage = 0;
 
   /// The fraction of the load applied at @p time (s): 0 before the ramp, 1 after it.
   [[nodiscard]] double factor_at(double time) const noexcept;
@@ -183,7 +187,8 @@ struct LoadSpec {
 /// `[analysis]`: time stepping, contact and solver settings.
 struct AnalysisSpec {
   AnalysisKind kind = AnalysisKind::dynamic;
-  /// Number of time steps, 1..1e8. Required.
+  /// Number of time steps, 1..1e8. Required without `[[stage]]` tables; with them, not
+  /// given and the sum of theirs.
   int steps = 0;
   /// Time step (s); empty for "auto" (chosen from max_step_displacement).
   std::optional<double> time_step;
@@ -263,11 +268,32 @@ struct BoltSpec {
   double hardening = 0.0;
   /// Line of this `[[bolt]]` header in the case file.
   int line = 0;
+  /// The `[[stage]]` it is installed with (a `[[stage.bolt]]`), 0: from the start.
+  int stage = 0;
 
   /// EA (N) of a bolt of length @p length: young x area, or stiffness x length.
   [[nodiscard]] double axial_rigidity(double length) const {
     return stiffness ? *stiffness * length : young * area;
   }
+};
+
+/// `[[stage]]`: a part of the run with its own steps, analysis kind, excavation, and loads,
+/// supports and bolts that start with it (docs/case-file.md, "[[stage]]").
+struct StageSpec {
+  /// Unique, [A-Za-z0-9_]+ (history.csv's `stage` column, summary.json's `stage`).
+  std::string name;
+  /// Time steps of the stage, 1..1e8.
+  int steps = 0;
+  /// `kind`; empty: `[analysis] kind`.
+  std::optional<AnalysisKind> kind;
+  /// `excavate`: Physical Surfaces whose material the stage removes, their tractions on the
+  /// rest released over its steps.
+  std::vector<std::string> excavate;
+  /// `reset_displacement`: monitors, blocks.csv and the step files count displacements from
+  /// the stage's start.
+  bool reset_displacement = false;
+  /// Line of this `[[stage]]` header in the case file.
+  int line = 0;
 };
 
 /// `[in_situ]`: an initial stress growing with depth below a ground surface, given to every
@@ -328,8 +354,10 @@ struct CaseSpec {
   std::vector<LoadSpec> loads;
   AnalysisSpec analysis;
   std::vector<MonitorSpec> monitors;
-  /// In the order of the case file.
+  /// In the order of the case file (those of `[[stage.bolt]]` after the others).
   std::vector<BoltSpec> bolts;
+  /// In the order of the case file; empty: one stage of `[analysis] steps`.
+  std::vector<StageSpec> stages;
   OutputSpec output;
   /// `[fos]`: the strength reduction of `nmm fos` (defaults when absent).
   FosSpec fos;

@@ -90,6 +90,9 @@ public:
   /// with the geometry file).
   /// The stepper's own warnings come later (TimeStepper::warnings()).
   [[nodiscard]] const std::vector<std::string>& warnings() const noexcept { return warnings_; }
+  /// Every bolt of the case, those of later stages included, in the order the stages add
+  /// them to the scene (history.csv's columns).
+  [[nodiscard]] const std::vector<std::string>& bolt_names() const noexcept { return bolt_names_; }
   /// The current values of every monitor (CaseSpec::monitors order).
   [[nodiscard]] std::vector<MonitorValues> monitor_values() const;
   /// `[analysis] initial_equilibrium`: TimeStepper::equilibrate(), then the monitors count
@@ -97,9 +100,25 @@ public:
   void equilibrate();
   /// A restart: the monitors' starts of the interrupted run. @pre one per monitor.
   void restore_monitor_starts(std::vector<Point2> starts);
+  /// The start of `[[stage]]` @p stage (CaseSpec::stages index): its analysis kind, its
+  /// supports, loads and bolts (those of stage 0 are in the scene from the start), and its
+  /// excavation, whose elements then release all of their loads (set_release()).
+  void begin_stage(int stage);
+  /// The fraction of their loads the elements the current stage excavates still apply, in
+  /// [0, 1] (1 at its start, 0 by its last step).
+  void set_release(double left);
+  /// `reset_displacement`: the monitors count their displacement from where they are now.
+  void reset_monitor_starts();
 
 private:
   [[nodiscard]] std::unique_ptr<ContactSystem> make_contact_system(double penalty) const;
+  /// The supports, loads and bolts that start with stage @p stage (0: with the run), those
+  /// loads' ramps counted from @p start_time (s).
+  [[nodiscard]] Scene stage_scene(int stage, double start_time) const;
+  /// @throws InputError for a `[[stage]] excavate` that is no Physical Surface, that an
+  ///         earlier stage excavates already, or stages that excavate all the material.
+  ///         Warns of a release over several steps on order-1 covers of a regular mesh.
+  void refuse_bad_excavations();
   /// Warnings about scales that the case file alone cannot judge (docs/case-file.md,
   /// "Checks across tables and warnings"): a fixed time step longer than Shi's for
   /// max_step_displacement, nmm blocks much smaller than the math triangles, a model so far
@@ -115,6 +134,10 @@ private:
   Model model_;
   std::vector<Point2> monitor_starts_;
   std::vector<std::string> warnings_;
+  double model_size_ = 1.0; ///< of the material's bounding box, m
+  std::vector<std::string> bolt_names_;
+  /// The elements the current stage excavates (set_release()).
+  std::vector<int> releasing_;
   std::unique_ptr<TimeStepper> stepper_;
 };
 

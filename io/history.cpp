@@ -92,7 +92,8 @@ void object_array(
 } // namespace
 
 std::string history_header(std::span<const std::string> monitor_names,
-                           std::span<const std::string> bolt_names) {
+                           std::span<const std::string> bolt_names,
+                           bool stage) {
   std::string header = "step,time,dt,open_close_iterations,contacts,kinetic_energy";
   for (const std::string& name : monitor_names) {
     for (const std::string_view value : monitor_value_names) {
@@ -105,6 +106,8 @@ std::string history_header(std::span<const std::string> monitor_names,
   // Columns added after the first release go last: readers that count columns keep working.
   header += ",load_work,step_cuts,max_penetration,lock_excess,slide_feed";
   header += ",external_work,strain_energy,contact_energy,dissipated_energy,energy_error";
+  if (stage)
+    header += ",stage";
   for (const std::string& name : bolt_names)
     header += "," + name + ".force";
   return header;
@@ -112,9 +115,10 @@ std::string history_header(std::span<const std::string> monitor_names,
 
 HistoryWriter::HistoryWriter(std::filesystem::path file,
                              std::vector<std::string> monitor_names,
-                             std::vector<std::string> bolt_names)
-    : n_monitors_(monitor_names.size()), n_bolts_(bolt_names.size()),
-      rows_(std::move(file), history_header(monitor_names, bolt_names) + '\n') {}
+                             std::vector<std::string> bolt_names,
+                             bool stage)
+    : n_monitors_(monitor_names.size()), n_bolts_(bolt_names.size()), stage_(stage),
+      rows_(std::move(file), history_header(monitor_names, bolt_names, stage) + '\n') {}
 
 HistoryWriter::HistoryWriter(std::filesystem::path file,
                              std::vector<std::string> monitor_names,
@@ -129,7 +133,8 @@ HistoryWriter::HistoryWriter(std::filesystem::path file,
 
 void HistoryWriter::write_row(const StepReport& report,
                               std::span<const MonitorValues> monitors,
-                              std::span<const double> bolt_forces) {
+                              std::span<const double> bolt_forces,
+                              std::string_view stage) {
   NMM_ASSERT(monitors.size() == n_monitors_, "one MonitorValues per monitor");
   NMM_ASSERT(bolt_forces.size() == n_bolts_, "one force per bolt");
   std::string row;
@@ -157,6 +162,10 @@ void HistoryWriter::write_row(const StepReport& report,
        {report.max_penetration, report.lock_excess, report.slide_feed, report.external_work,
         report.strain_energy, report.contact_energy, report.dissipated_energy, report.energy_error})
     number(value);
+  if (stage_) {
+    row += ',';
+    row += stage; // (letters, digits and _)
+  }
   for (const double force : bolt_forces)
     number(force);
   row += '\n';
@@ -307,6 +316,14 @@ std::string summary_json(const RunSummary& s) {
                    block.string("material", moved.material);
                    block.number("displacement", moved.displacement);
                  });
+  if (!s.stages.empty()) {
+    root.string("stage", s.stage);
+    object_array(root, out, "stages", s.stages, [](JsonObject& item, const StageSummary& stage) {
+      item.string("name", stage.name);
+      item.integer("first_step", stage.first_step);
+      item.integer("steps", stage.steps);
+    });
+  }
   if (!s.bolts.empty())
     object_array(root, out, "bolts", s.bolts, [](JsonObject& item, const BoltSummary& bolt) {
       item.string("name", bolt.name);

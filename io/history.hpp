@@ -44,9 +44,11 @@ inline constexpr std::array<std::string_view, 9> monitor_value_names{"x",  "y", 
 
 /// The header line of history.csv (without the newline): `step,time,dt,
 /// open_close_iterations,contacts,kinetic_energy` then `m.x,m.y,...,m.sxy` per monitor, then
-/// `load_work` and the columns added since (docs/output.md), last `b.force` per bolt.
+/// `load_work` and the columns added since (docs/output.md), then `stage` (with stages) and
+/// `b.force` per bolt.
 [[nodiscard]] std::string history_header(std::span<const std::string> monitor_names,
-                                         std::span<const std::string> bolt_names = {});
+                                         std::span<const std::string> bolt_names = {},
+                                         bool stage = false);
 
 /// history.csv, written row by row, each row by one write(2) (no buffer), so that a run
 /// that stops at any moment leaves every completed step on disk; a row that the disk or a
@@ -58,7 +60,8 @@ public:
   /// @throws InputError naming the file when it cannot be written.
   HistoryWriter(std::filesystem::path file,
                 std::vector<std::string> monitor_names,
-                std::vector<std::string> bolt_names = {});
+                std::vector<std::string> bolt_names = {},
+                bool stage = false);
   /// Continues @p file after a restart: keeps its first @p keep_bytes bytes (the header and
   /// the rows up to the checkpoint's step; bytes() when the checkpoint was written), drops
   /// the rest (rows the interrupted run wrote after it) and appends after them.
@@ -74,7 +77,8 @@ public:
   ///         large: ...") when the write fails; the file then ends with the row before.
   void write_row(const StepReport& report,
                  std::span<const MonitorValues> monitors,
-                 std::span<const double> bolt_forces = {});
+                 std::span<const double> bolt_forces = {},
+                 std::string_view stage = {});
 
   [[nodiscard]] const std::filesystem::path& file() const noexcept { return rows_.file(); }
   /// Size of the file so far: header and every row written, bytes.
@@ -83,6 +87,7 @@ public:
 private:
   std::size_t n_monitors_ = 0;
   std::size_t n_bolts_ = 0;
+  bool stage_ = false;
   RowFile rows_;
 };
 
@@ -101,6 +106,13 @@ struct BoltSummary {
   int bars = 0;          ///< its bars: 1 end-anchored, one per element crossed grouted
   int yielding_bars = 0; ///< of those, yielding at the step
   int ruptured_bars = 0; ///< of those, broken
+};
+
+/// A `[[stage]]` of the run (summary.json's stages).
+struct StageSummary {
+  std::string name;
+  long first_step = 0; ///< 1-based
+  long steps = 0;
 };
 
 /// Everything summary.json holds. The first group of members is DESIGN.md's contract, the
@@ -139,6 +151,10 @@ struct RunSummary {
   std::optional<std::vector<MovedBlock>> moved_blocks;
   /// The case's bolts, in the order of history.csv's columns; no key without bolts.
   std::vector<BoltSummary> bolts;
+  /// The `[[stage]]` of the last step ("" before the first), and every stage; no keys
+  /// without stages.
+  std::string stage;
+  std::vector<StageSummary> stages;
 };
 
 /// summary.json's text: an object with the keys in the order of RunSummary, two-space

@@ -55,9 +55,12 @@ segments_of(const CaseSpec& spec, const PhysicalMesh& physical, const BoltSpec& 
 std::vector<Bolt> place_bolts(const CaseSpec& spec,
                               const PhysicalMesh& physical,
                               const Model& model,
-                              double tolerance) {
+                              double tolerance,
+                              int stage) {
   std::vector<Bolt> bolts;
   for (const BoltSpec& b : spec.bolts) {
+    if (b.stage != stage)
+      continue;
     const std::vector<std::pair<Point2, Point2>> segments = segments_of(spec, physical, b);
     for (std::size_t k = 0; k < segments.size(); ++k) {
       const auto& [from, to] = segments[k];

@@ -113,8 +113,19 @@ PolygonMeshData make_step_data(const Model& model,
   std::vector<std::int32_t> block;
   std::vector<std::int32_t> kind;
 
+  // Where each point written is in initial_points (excavated elements are not written).
+  std::vector<std::size_t> initial_of;
+  std::size_t consumed = 0;
   for (int e = 0; e < model.n_elements(); ++e) {
     const ModelElement& element = model.elements[static_cast<std::size_t>(e)];
+    if (element.excavated) {
+      for (const Polygon& polygon : element.polygons) {
+        consumed += polygon.outer.size();
+        for (const Loop& hole : polygon.holes)
+          consumed += hole.size();
+      }
+      continue;
+    }
     const ElementShape shape = model.shape(e);
     const Eigen::VectorXd values = model.element_values(e, velocity);
     const std::span<const double> v(values.data(), static_cast<std::size_t>(values.size()));
@@ -124,6 +135,7 @@ PolygonMeshData make_step_data(const Model& model,
       for (const Point2& p : loop) {
         indices.push_back(static_cast<int>(data.points.size()));
         data.points.push_back(p);
+        initial_of.push_back(consumed++);
         point_velocity.push_back(shape.displacement_at(p, v));
       }
       return indices;
@@ -146,11 +158,11 @@ PolygonMeshData make_step_data(const Model& model,
       kind.push_back(static_cast<std::int32_t>(element.kind));
     }
   }
-  NMM_ASSERT(initial_points.size() == data.points.size(),
+  NMM_ASSERT(initial_points.size() == consumed,
              "the initial points must be step_points() of the same model");
   std::vector<Point2> displacement(data.points.size());
   for (std::size_t k = 0; k < displacement.size(); ++k)
-    displacement[k] = data.points[k] - initial_points[k];
+    displacement[k] = data.points[k] - initial_points[initial_of[k]];
 
   data.point_data.add_vectors("displacement", displacement).add_vectors("velocity", point_velocity);
   data.cell_data.add("stress", std::move(stress), 3, {"sxx", "syy", "sxy"})

@@ -50,7 +50,8 @@ struct PrincipalStress {
 [[nodiscard]] std::vector<Point2> step_points(const Model& model);
 
 /// The model's elements at their current position as a polygon mesh for write_vtu(): one
-/// cell per element polygon, each with its own points (as `mesh.vtu`).
+/// cell per element polygon, each with its own points (as `mesh.vtu`); excavated elements
+/// (ModelElement::excavated) are left out, so the opening shows.
 /// - point data `displacement` (m, 3 components x, y, z = 0): current minus
 ///   @p initial_points; `velocity` (m/s, 3 components x, y, z): the element's velocity field at
 ///   the point.

@@ -93,6 +93,12 @@ Eigen::VectorXd elongation_vector(const Model& model, const BoltBar& bar) {
   return b;
 }
 
+/// Whether both ends of @p bar are in material that is still there.
+bool anchored(const Model& model, const BoltBar& bar) {
+  return !model.elements[static_cast<std::size_t>(bar.a.element)].excavated &&
+         !model.elements[static_cast<std::size_t>(bar.b.element)].excavated;
+}
+
 double tangent_stiffness(const Bolt& bolt, const BoltBar& bar) {
   switch (bar.state) {
   case BoltState::elastic:
@@ -230,6 +236,11 @@ void bar_spring(const Model& model,
                 Eigen::MatrixXd& stiffness,
                 Eigen::VectorXd& load) {
   const Eigen::VectorXd b = elongation_vector(model, bar);
+  if (!anchored(model, bar)) { // an end on excavated material: nothing to hold
+    stiffness = Eigen::MatrixXd::Zero(b.size(), b.size());
+    load = Eigen::VectorXd::Zero(b.size());
+    return;
+  }
   stiffness = tangent_stiffness(bolt, bar) * b * b.transpose();
   load = -bar.force * b;
 }
@@ -249,6 +260,12 @@ BoltWork advance_bolts(const Model& model, std::span<Bolt> bolts, const Eigen::V
     for (BoltBar& bar : bolt.bars) {
       if (bar.state == BoltState::ruptured)
         continue;
+      if (!anchored(model, bar)) {
+        work.dissipated += bar.force * bar.force / (2.0 * bar.stiffness);
+        work.elastic_change -= bar.force * bar.force / (2.0 * bar.stiffness);
+        bar.force = 0.0;
+        continue;
+      }
       const double d = direction(bar).dot(model.displacement(bar.b.element, bar.b.position, raw) -
                                           model.displacement(bar.a.element, bar.a.position, raw));
       const double tangent = tangent_stiffness(bolt, bar);

@@ -52,8 +52,9 @@ std::vector<LinearConstraint>
 support_constraints(const Model& model, const std::vector<SupportPoint>& supports, double time) {
   std::vector<LinearConstraint> rows;
   for (const SupportPoint& s : supports) {
-    if (s.method != SupportMethod::exact || s.point.element < 0)
-      continue;
+    if (s.method != SupportMethod::exact || s.point.element < 0 ||
+        model.elements[at(s.point.element)].excavated)
+      continue; // (a support on excavated material went with it)
     const PointInterpolation t = model.shape(s.point.element).interpolation_at(s.point.position);
     const std::span<const int> dofs = model.element_dofs(s.point.element);
     for (int component = 0; component < 2; ++component) {
@@ -121,7 +122,7 @@ void element_load(const Model& model,
 
 void add_point_load(const Model& model, const PointLoad& load, double time, Eigen::VectorXd& f) {
   const double factor = load.ramp.at(time);
-  if (factor == 0.0 || load.point.element < 0)
+  if (factor == 0.0 || load.point.element < 0 || model.elements[at(load.point.element)].excavated)
     return;
   const PointInterpolation t =
       model.shape(load.point.element).interpolation_at(load.point.position);
@@ -138,7 +139,7 @@ void add_curve_load(const Model& model, const CurveLoad& load, double time, Eige
   for (const CurvePiece& piece : model.curve_pieces[at(load.curve)]) {
     const bool left = piece.left_element >= 0;
     const int element = left ? piece.left_element : piece.right_element;
-    if (element < 0)
+    if (element < 0 || model.elements[at(element)].excavated)
       continue;
     const Point2 along = piece.b - piece.a;
     const double length = along.norm();

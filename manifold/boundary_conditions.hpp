@@ -91,8 +91,9 @@ struct CurveLoad {
                                                              const std::string& origin);
 
 /// Constraint rows of the exact supports for a step ending at @p time (one per held
-/// component and point): the step displacement of the point is what remains of its imposed
-/// displacement, ramp(time) u_imposed - (x - x_start), so that a held point never drifts.
+/// component and point; none for a point of excavated material, ModelElement::excavated): the step
+/// displacement of the point is what remains of its imposed displacement, ramp(time) u_imposed - (x
+/// - x_start), so that a held point never drifts.
 [[nodiscard]] std::vector<LinearConstraint>
 support_constraints(const Model& model, const std::vector<SupportPoint>& supports, double time);
 

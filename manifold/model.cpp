@@ -217,6 +217,87 @@ std::vector<LinearConstraint> Model::extension_relations() const {
   return relations;
 }
 
+void Model::excavate(const std::vector<int>& removed, double min_cover_area_ratio) {
+  for (const int e : removed) {
+    elements[at(e)].excavated = true;
+    elements[at(e)].release = 1.0;
+  }
+  // Each NMM cover's material area and its elements' triangles' area.
+  std::vector<double> material(covers.size(), 0.0);
+  std::vector<double> star(covers.size(), 0.0);
+  for (int e = 0; e < n_elements(); ++e) {
+    const ModelElement& element = elements[at(e)];
+    if (element.kind != ElementKind::nmm)
+      continue;
+    const std::array<Point2, 3> t = triangle(e);
+    const double full = 0.5 * std::abs((t[1] - t[0]).x() * (t[2] - t[0]).y() -
+                                       (t[1] - t[0]).y() * (t[2] - t[0]).x());
+    for (const int c : element.covers) {
+      star[at(c)] += full;
+      if (!element.excavated)
+        material[at(c)] += element.area;
+    }
+  }
+  const auto tiny = [&](int c) {
+    return covers[at(c)].kind == ElementKind::nmm && material[at(c)] > 0.0 &&
+           material[at(c)] < min_cover_area_ratio * star[at(c)];
+  };
+  const auto well_posed = [&](int e) {
+    const ModelElement& element = elements[at(e)];
+    if (element.excavated || element.kind != ElementKind::nmm)
+      return false;
+    for (const int c : element.covers) {
+      if (tiny(c) || covers[at(c)].extension_element >= 0)
+        return false;
+    }
+    return true;
+  };
+  for (int c = 0; c < n_covers(); ++c) {
+    ModelCover& cover = covers[at(c)];
+    const bool root_removed =
+        cover.extension_element >= 0 && elements[at(cover.extension_element)].excavated;
+    if (!tiny(c) && !root_removed)
+      continue;
+    int best = -1;
+    double best_distance = std::numeric_limits<double>::infinity();
+    for (int e = 0; e < n_elements(); ++e) {
+      if (elements[at(e)].block != cover.block || !well_posed(e))
+        continue;
+      const std::array<Point2, 3> t = triangle(e);
+      const double distance = ((t[0] + t[1] + t[2]) / 3.0 - cover.position).norm();
+      if (distance < best_distance) {
+        best_distance = distance;
+        best = e;
+      }
+    }
+    cover.extension_element = best; // (-1: none left; its elements alone hold it)
+  }
+}
+
+std::vector<LinearConstraint> Model::excavated_cover_relations() const {
+  std::vector<char> active(covers.size(), 0);
+  bool any = false;
+  for (const ModelElement& e : elements) {
+    any = any || e.excavated;
+    if (!e.excavated) {
+      for (const int c : e.covers)
+        active[at(c)] = 1;
+    }
+  }
+  std::vector<LinearConstraint> relations;
+  if (!any)
+    return relations;
+  for (std::size_t c = 0; c < covers.size(); ++c) {
+    if (active[c] != 0)
+      continue;
+    for (int k = 0; k < covers[c].n_dofs; ++k) {
+      const int dof = covers[c].first_dof + k;
+      relations.push_back({{{dof, 1.0}}, 0.0, dof, "a cover of excavated material"});
+    }
+  }
+  return relations;
+}
+
 std::vector<LinearConstraint> Model::dependency_relations() const {
   std::vector<LinearConstraint> relations;
   if (order == 0)
@@ -224,7 +305,7 @@ std::vector<LinearConstraint> Model::dependency_relations() const {
   // NMM elements of each block (DDA and VEM blocks have no dependency).
   std::map<int, std::vector<int>> block_elements;
   for (int e = 0; e < n_elements(); ++e) {
-    if (elements[at(e)].kind == ElementKind::nmm)
+    if (elements[at(e)].kind == ElementKind::nmm && !elements[at(e)].excavated)
       block_elements[elements[at(e)].block].push_back(e);
   }
   for (const auto& [block, members] : block_elements) {
@@ -353,6 +434,8 @@ void Model::accumulate_stress(const Eigen::VectorXd& raw) {
   Eigen::VectorXd values;
   for (int e = 0; e < n_elements(); ++e) {
     ModelElement& element = elements[at(e)];
+    if (element.excavated)
+      continue;
     const ElementShape s = shape(e);
     element_values(e, raw, values);
     const std::span<const double> d(values.data(), static_cast<std::size_t>(values.size()));

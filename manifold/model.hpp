@@ -64,6 +64,13 @@ struct ModelElement {
   /// before the first step.
   Eigen::VectorXd stabilisation_force;
   double area = 0.0;
+  /// Removed by a stage's `excavate` (docs/case-file.md, "[[stage]]"): no stiffness, mass or
+  /// contact, its stress frozen; the fraction `release` of its loads (body forces and the
+  /// initial-stress load of its stress) still acts on its covers, from 1 at the start of
+  /// its stage to 0 at the end, so that the tractions it held on the rest are released
+  /// over the stage's steps.
+  bool excavated = false;
+  double release = 0.0;
 };
 
 /// A material point followed through the analysis (monitors, point loads).
@@ -140,17 +147,29 @@ public:
   /// flex of the order-1 dependence (dependency_relations()).
   [[nodiscard]] std::vector<LinearConstraint> extension_relations() const;
 
+  /// Excavates @p removed (ModelElement::excavated, release 1): an NMM cover left with less
+  /// than @p min_cover_area_ratio of its elements' triangles in material takes the extension
+  /// of the nearest well-posed element of its block, as the cover mesher's tiny covers do
+  /// (docs/cover-mesher.md, "Tiny pieces"), and so does one whose extension element is
+  /// removed; a cover left with none has its unknowns fixed (excavated_cover_relations()).
+  void excavate(const std::vector<int>& removed, double min_cover_area_ratio);
+
+  /// Every unknown of a cover all of whose elements are excavated, fixed to zero (nothing
+  /// holds or moves it any more). Empty when nothing is excavated.
+  [[nodiscard]] std::vector<LinearConstraint> excavated_cover_relations() const;
+
   /// For order 1: unknowns fixed to zero to remove the linear dependence of the cover
   /// functions (docs/formulation.md, "Order-1 covers"). Each block's dependencies are the
   /// flexes of the framework whose joints are its covers and whose bars are the sides of its
   /// elements' triangles; as many unknowns as there are flexes are fixed, chosen by
   /// column-pivoted QR, so the space of displacement fields is unchanged. Empty for order 0.
+  /// Excavated elements do not count.
   [[nodiscard]] std::vector<LinearConstraint> dependency_relations() const;
 
   /// Adds D eps(d) of the step to every element's stress and rotates the stress with the
   /// element's rigid rotation of the step (objective update); the same for a VEM block's
   /// stabilisation force: every vertex force turned by the rotation, plus
-  /// eta_E (I - P_u)^T (I - P_u) d. Call before move().
+  /// eta_E (I - P_u)^T (I - P_u) d. Excavated elements keep theirs. Call before move().
   void accumulate_stress(const Eigen::VectorXd& raw);
 
   /// The exact rotation of the VEM and NMM blocks whose material has `exact_rotation`

@@ -92,10 +92,14 @@ void account_energy(const StepContext& context,
     const ElasticMaterial& material = model.material_of(e);
     const ElementShape shape = model.shape(e); // ElementIntegrals keeps a reference to it
     const ElementIntegrals integrals(shape, element.polygons);
-    integrals.stiffness(elasticity_matrix(material), material.thickness_factor(), stiffness);
     integrals.loads(Point2::Zero(), element.stress, material.thickness_factor(), stress_load);
     integrals.add_stabilisation_load(element.stabilisation_force, stress_load);
     model.element_values(e, raw, values);
+    if (element.excavated) { // the part of its stress's load still released, no stiffness
+      ledger.strain_energy -= element.release * stress_load.dot(values);
+      continue;
+    }
+    integrals.stiffness(elasticity_matrix(material), material.thickness_factor(), stiffness);
     const double half = 0.5 * values.dot(stiffness * values);
     ledger.strain_energy += half - stress_load.dot(values);
     quadratic += half;

@@ -64,6 +64,8 @@ make_step_map(const StepContext& context, const StepSystemState& state, double t
   const std::vector<LinearConstraint> supports =
       support_constraints(model, context.scene.supports, time);
   constraints.insert(constraints.end(), supports.begin(), supports.end());
+  const std::vector<LinearConstraint> excavated = model.excavated_cover_relations();
+  constraints.insert(constraints.end(), excavated.begin(), excavated.end());
   return std::make_shared<const DofMap>(model.n_dofs(), constraints, 1e-12, context.model_size,
                                         state.map.get());
 }
@@ -89,7 +91,8 @@ make_couplings(const StepContext& context, const DofMap& map, std::size_t expect
   }
   for (std::size_t s = 0; s < supports.size(); ++s) {
     const SupportPoint& support = supports[s];
-    if (support.method == SupportMethod::penalty && support.point.element >= 0) {
+    if (support.method == SupportMethod::penalty && support.point.element >= 0 &&
+        !model.elements[at(support.point.element)].excavated) {
       const int e = support.point.element;
       c.flat.insert(c.flat.end(), c.flat.begin() + c.starts[at(e)],
                     c.flat.begin() + c.starts[at(e + 1)]);
@@ -225,6 +228,12 @@ void assemble_element(const StepContext& context,
   Eigen::VectorXd& stress_load = work.stress_load;
   integrals.loads(Point2::Zero(), element.stress, material.thickness_factor(), stress_load);
   integrals.add_stabilisation_load(element.stabilisation_force, stress_load);
+  if (element.excavated) {
+    // Only what is left of its loads, on its covers; no stiffness, no mass.
+    work.loads *= element.release;
+    stress_load *= element.release;
+    work.local.setZero();
+  }
   for (std::size_t i = 0; i < dofs.size(); ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     system.f(dofs[i]) += work.loads(k);
@@ -234,7 +243,7 @@ void assemble_element(const StepContext& context,
   if (context.kind.with_mass) {
     const double inertia = 2.0 / (dt * dt);
     ElementMass& mass = state.element_mass[at(e)];
-    integrals.mass(material.density * material.thickness_factor(), mass);
+    integrals.mass(element.excavated ? 0.0 : material.density * material.thickness_factor(), mass);
     mass.add_to(work.local, inertia);
     model.element_values(e, context.velocity, work.velocity);
     mass.times(work.velocity, work.inertia_load);

@@ -167,6 +167,29 @@ Point2 TimeStepper::velocity_at(int element, const Point2& x) const {
   return model_.displacement(element, x, velocity_);
 }
 
+void TimeStepper::set_integration(TimeIntegration integration) {
+  if (integration == options_.integration)
+    return;
+  if (integration == TimeIntegration::dynamic && !has_mass_)
+    throw InputError("a dynamic stage needs the mass of every body: give every material a "
+                     "density in kg/m³");
+  options_.integration = integration;
+  velocity_.setZero();
+  impl_->acceleration.setZero(velocity_.size());
+}
+
+void TimeStepper::add_to_scene(const Scene& more) {
+  scene_.supports.insert(scene_.supports.end(), more.supports.begin(), more.supports.end());
+  scene_.body_loads.insert(scene_.body_loads.end(), more.body_loads.begin(), more.body_loads.end());
+  scene_.point_loads.insert(scene_.point_loads.end(), more.point_loads.begin(),
+                            more.point_loads.end());
+  scene_.curve_loads.insert(scene_.curve_loads.end(), more.curve_loads.begin(),
+                            more.curve_loads.end());
+  scene_.bolts.insert(scene_.bolts.end(), more.bolts.begin(), more.bolts.end());
+}
+
+void TimeStepper::material_removed() { impl_->system.dependencies = model_.dependency_relations(); }
+
 StepReport TimeStepper::step(double until) { return advance(until, false); }
 
 StepReport TimeStepper::equilibrate() {

@@ -221,6 +221,16 @@ public:
   void set_rigid_velocities(const std::vector<Point2>& block_velocity,
                             const std::vector<double>& block_angular_velocity);
 
+  /// A stage's change of analysis kind (`[[stage]] kind`): the next steps are of
+  /// @p integration; a static one starts from rest.
+  void set_integration(TimeIntegration integration);
+  /// A stage's new supports, loads and bolts (`[[stage.boundary]]`, ...), added to the
+  /// scene for the next steps. @p more's monitors are ignored.
+  void add_to_scene(const Scene& more);
+  /// Elements were excavated (ModelElement::excavated): the order-1 dependencies are chosen
+  /// again for the material left.
+  void material_removed();
+
   /// One time step ending at most at @p until (s). @throws NumericalError when the step
   /// cannot be solved even after max_step_cuts cuts, with what went wrong.
   StepReport step(double until);
