@@ -136,6 +136,9 @@ private:
   std::vector<std::string> warnings_;
   double model_size_ = 1.0; ///< of the material's bounding box, m
   std::vector<std::string> bolt_names_;
+  /// A warning when stage @p stage excavates whole blocks of a scene with contact: their
+  /// contacts' forces go at once, not over the stage's steps.
+  void warn_about_contact_release(const StageSpec& stage);
   /// The elements the current stage excavates (set_release()).
   std::vector<int> releasing_;
   std::unique_ptr<TimeStepper> stepper_;
