@@ -4,11 +4,11 @@
 #include "contact/joint_law.hpp"
 #include "io/atomic_file.hpp"
 #include "io/block_results.hpp"
+#include "io/case_names.hpp"
 #include "io/checkpoint.hpp"
 #include "io/cover_warnings.hpp"
 #include "io/gmsh_reader.hpp"
 #include "io/joint_sets.hpp"
-#include "io/scene_bolts.hpp"
 #include "io/step_output.hpp"
 #include "io/text.hpp"
 #include "io/vtk_writer.hpp"
@@ -38,59 +38,11 @@ namespace nmm {
 
 namespace {
 
+using namespace case_names;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
-
-[[noreturn]] void fail(const CaseSpec& spec, int line, const std::string& message) {
-  throw InputError(spec.file.string(), line, 0, message);
-}
-
-std::string geometry_name(const CaseSpec& spec) { return spec.geometry.filename().string(); }
-
-template <class Items> std::string did_you_mean(const std::string& name, const Items& items) {
-  std::vector<std::string_view> names;
-  for (const auto& item : items)
-    names.emplace_back(item.name);
-  const std::string_view best = closest(name, names);
-  return best.empty() ? std::string() : " (did you mean " + in_quotes(best) + "?)";
-}
-
-/// "a Physical Surface" / "a Physical Curve" / "a Physical Point" when @p name is a group of
-/// that kind, else empty.
-std::string group_kind(const PhysicalMesh& physical, const std::string& name) {
-  if (physical.find_region(name) >= 0)
-    return "a Physical Surface";
-  if (physical.find_curve(name) >= 0)
-    return "a Physical Curve";
-  if (physical.find_point(name) >= 0)
-    return "a Physical Point";
-  return {};
-}
-
-/// The message for a name of the case that is not a group of the wanted kind.
-/// @param what    how the case file refers to it: `material "granit"`, `[[boundary]] curve "x"`
-/// @param wanted  "Physical Surface", "Physical Curve" or "Physical Point"
-/// @param remedy  what to do when the name exists as another kind, e.g. `write point = "x"`
-template <class Items>
-std::string unknown_name(const CaseSpec& spec,
-                         const PhysicalMesh& physical,
-                         const std::string& what,
-                         const std::string& name,
-                         const std::string& wanted,
-                         const Items& wanted_items,
-                         const std::string& names,
-                         const std::string& remedy) {
-  const std::string other = group_kind(physical, name);
-  if (!other.empty()) {
-    return what + " is " + other + " of " + geometry_name(spec) + ", not a " + wanted + "; " +
-           remedy + " (the " + wanted + "s are: " + names + ")";
-  }
-  return what + " is not a " + wanted + " of " + geometry_name(spec) + " (it has: " + names +
-         "); correct the name in the case file" + did_you_mean(name, wanted_items) + ", or add " +
-         wanted + "(" + in_quotes(name) + ") = {...}; to " + geometry_name(spec);
-}
 
 ElasticMaterial elastic_material(const MaterialSpec& spec) {
   ElasticMaterial m;
@@ -105,52 +57,6 @@ ElasticMaterial elastic_material(const MaterialSpec& spec) {
   m.initial_stress_surface = spec.initial_stress_surface;
   m.exact_rotation = spec.exact_rotation;
   return m;
-}
-
-/// The ramp of @p load in a stage that starts at @p start (s): its times count from there.
-Ramp ramp_of(const LoadSpec& load, double start) {
-  return {start + load.ramp_start, start + load.ramp_end};
-}
-
-/// The curve a `[[boundary]]` or `[[load]]` names, checked to touch the material.
-int resolve_curve(const CaseSpec& spec,
-                  const PhysicalMesh& physical,
-                  const Model& model,
-                  const std::string& entry,
-                  const std::string& name,
-                  int line) {
-  const int curve = physical.find_curve(name);
-  if (curve < 0) {
-    fail(spec, line,
-         unknown_name(spec, physical, entry + " curve " + in_quotes(name), name, "Physical Curve",
-                      physical.curves, physical.curve_names(),
-                      physical.find_point(name) >= 0 ? "write point = " + in_quotes(name)
-                                                     : "name a Physical Curve"));
-  }
-  if (model.curve_pieces[at(curve)].empty()) {
-    fail(spec, line,
-         entry + " curve " + in_quotes(name) + " of " + geometry_name(spec) +
-             " does not touch the material, so it would act on nothing; move the curve onto "
-             "the material's boundary or into it, or name another curve");
-  }
-  return curve;
-}
-
-/// The point group a `[[boundary]]` or `[[load]]` names.
-int resolve_point_group(const CaseSpec& spec,
-                        const PhysicalMesh& physical,
-                        const std::string& entry,
-                        const std::string& name,
-                        int line) {
-  const int group = physical.find_point(name);
-  if (group < 0) {
-    fail(spec, line,
-         unknown_name(spec, physical, entry + " point " + in_quotes(name), name, "Physical Point",
-                      physical.points, physical.point_names(),
-                      physical.find_curve(name) >= 0 ? "write curve = " + in_quotes(name)
-                                                     : "name a Physical Point"));
-  }
-  return group;
 }
 
 /// Peak memory (bytes) of an nmm model on a math mesh of @p triangles, covers of @p order.
@@ -606,186 +512,6 @@ CaseAnalysis::CaseAnalysis(CaseSpec spec, const PhaseCallback& on_phase, double 
 }
 
 CaseAnalysis::~CaseAnalysis() = default;
-
-Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
-  const PhysicalMesh& physical = geometry_.physical;
-  const double tolerance = 1e-9 * model_size_;
-  Scene scene;
-  // Supports.
-  for (const BoundarySpec& b : spec_.boundaries) {
-    if (b.stage != stage)
-      continue;
-    if (b.is_curve) {
-      const int curve = resolve_curve(spec_, physical, model_, "[[boundary]]", b.target, b.line);
-      const std::vector<SupportPoint> points = curve_support_points(
-          model_, curve, b.fix_x, b.fix_y, b.method, "curve " + in_quotes(b.target));
-      scene.supports.insert(scene.supports.end(), points.begin(), points.end());
-    } else {
-      const int group = resolve_point_group(spec_, physical, "[[boundary]]", b.target, b.line);
-      for (const Point2& x : physical.points[at(group)].points) {
-        const int element = model_.find_element(x, tolerance);
-        if (element < 0) {
-          fail(spec_, b.line,
-               "[[boundary]] point " + in_quotes(b.target) + ": the point " + point_text(x) +
-                   " of " + geometry_name(spec_) +
-                   " lies outside the material, so it cannot hold anything; move it onto or "
-                   "into a Physical Surface");
-        }
-        SupportPoint support;
-        support.point = {element, x};
-        support.fix_x = b.fix_x;
-        support.fix_y = b.fix_y;
-        support.method = b.method;
-        support.origin = "point " + in_quotes(b.target);
-        support.start = x;
-        scene.supports.push_back(support);
-      }
-    }
-  }
-  // Loads.
-  for (const LoadSpec& load : spec_.loads) {
-    if (load.stage != stage)
-      continue;
-    switch (load.kind) {
-    case LoadKind::gravity:
-      scene.body_loads.push_back({load.vector, ramp_of(load, start_time)});
-      break;
-    case LoadKind::point: {
-      const int group = resolve_point_group(spec_, physical, "[[load]]", load.target, load.line);
-      for (const Point2& x : physical.points[at(group)].points) {
-        const int element = model_.find_element(x, tolerance);
-        if (element < 0) {
-          fail(spec_, load.line,
-               "[[load]] point " + in_quotes(load.target) + ": the point " + point_text(x) +
-                   " of " + geometry_name(spec_) +
-                   " lies outside the material, so the force would act on nothing; move it "
-                   "onto or into a Physical Surface");
-        }
-        scene.point_loads.push_back({{element, x}, load.vector, ramp_of(load, start_time)});
-      }
-      break;
-    }
-    case LoadKind::traction:
-    case LoadKind::pressure: {
-      const int curve = resolve_curve(spec_, physical, model_, "[[load]]", load.target, load.line);
-      CurveLoad curve_load;
-      curve_load.curve = curve;
-      curve_load.is_pressure = load.kind == LoadKind::pressure;
-      curve_load.traction = load.vector;
-      curve_load.pressure = load.pressure;
-      curve_load.ramp = ramp_of(load, start_time);
-      if (load.water_level) {
-        // Hydrostatic: gamma (level - y) below the water surface, at the current position.
-        const double level = *load.water_level;
-        const double gamma = load.water_unit_weight;
-        curve_load.pressure_at = [level, gamma](const Point2& x) {
-          return gamma * std::max(0.0, level - x.y());
-        };
-      }
-      scene.curve_loads.push_back(curve_load);
-      break;
-    }
-    }
-  }
-  scene.bolts = place_bolts(spec_, physical, model_, tolerance, stage);
-  return scene;
-}
-
-void CaseAnalysis::refuse_bad_excavations() {
-  const PhysicalMesh& physical = geometry_.physical;
-  std::set<int> removed;
-  for (const StageSpec& stage : spec_.stages) {
-    for (const std::string& name : stage.excavate) {
-      const int region = physical.find_region(name);
-      if (region < 0)
-        fail(spec_, stage.line,
-             unknown_name(spec_, physical,
-                          "[[stage]] " + in_quotes(stage.name) + " excavate " + in_quotes(name),
-                          name, "Physical Surface", physical.regions, physical.region_names(),
-                          "name the Physical Surface of the material to remove"));
-      if (!removed.insert(region).second)
-        fail(spec_, stage.line,
-             "[[stage]] " + in_quotes(stage.name) + " excavates " + in_quotes(name) +
-                 ", which an earlier stage (or this one) excavates already; remove it here");
-    }
-  }
-  if (removed.empty())
-    return;
-  for (const StageSpec& stage : spec_.stages) {
-    if (!stage.excavate.empty() && stage.steps > 1 && spec_.cover_mesh.order == 1 &&
-        spec_.cover_mesh.kind == CoverMeshKind::regular)
-      warnings_.push_back(
-          spec_.file.filename().string() + ":" + std::to_string(stage.line) + ": [[stage]] " +
-          in_quotes(stage.name) + " releases its excavation over " + std::to_string(stage.steps) +
-          " steps on order-1 covers of a regular math mesh, whose triangles the opening's "
-          "outline cuts; such a release is not verified yet (an opening's crown stress came out "
-          "twice Kirsch's over 3 steps, right in 1): give the excavating stage steps = 1 and "
-          "the later steps to a stage of their own, or use [cover_mesh] kind = \"gmsh\"");
-  }
-  for (const ModelElement& element : model_.elements) {
-    if (removed.count(element.material) == 0)
-      return;
-  }
-  fail(spec_, spec_.stages.back().line,
-       "the stages excavate all the material of " + geometry_name(spec_) +
-           ", so nothing would be left to compute; excavate only the openings");
-}
-
-void CaseAnalysis::begin_stage(int stage) {
-  const StageSpec& spec = spec_.stages[at(stage)];
-  const AnalysisKind kind = spec.kind.value_or(spec_.analysis.kind);
-  stepper_->set_integration(kind == AnalysisKind::dynamic ? TimeIntegration::dynamic
-                                                          : TimeIntegration::static_reset);
-  if (stage > 0)
-    stepper_->add_to_scene(stage_scene(stage, stepper_->time()));
-  releasing_.clear();
-  for (const std::string& name : spec.excavate) {
-    const int region = geometry_.physical.find_region(name);
-    NMM_ASSERT(region >= 0, "the excavated regions were checked against the geometry");
-    for (int e = 0; e < model_.n_elements(); ++e) {
-      const ModelElement& element = model_.elements[at(e)];
-      if (element.material == region && !element.excavated)
-        releasing_.push_back(e);
-    }
-  }
-  if (!releasing_.empty()) {
-    model_.excavate(releasing_, spec_.cover_mesh.min_cover_area_ratio);
-    stepper_->material_removed();
-    warn_about_contact_release(spec);
-  }
-}
-
-void CaseAnalysis::warn_about_contact_release(const StageSpec& stage) {
-  if (stepper_->contact() == nullptr || stage.steps < 2)
-    return;
-  std::vector<char> left(model_.blocks.size(), 0);
-  for (const ModelElement& element : model_.elements) {
-    if (!element.excavated)
-      left[at(element.block)] = 1;
-  }
-  const auto gone = static_cast<long>(std::count(left.begin(), left.end(), 0));
-  if (gone == 0)
-    return;
-  warnings_.push_back(spec_.file.filename().string() + ":" + std::to_string(stage.line) +
-                      ": [[stage]] " + in_quotes(stage.name) + " excavates " +
-                      std::to_string(gone) +
-                      " whole block(s): the forces of their contacts with the rest go at "
-                      "once in the stage's first step, not over its " +
-                      std::to_string(stage.steps) +
-                      " steps (only loads inside a block are released gradually), and static "
-                      "steps from such a jump can jack jointed rock; check the blocks' "
-                      "displacements and the energy balance");
-}
-
-void CaseAnalysis::set_release(double left) {
-  for (const int e : releasing_)
-    model_.elements[at(e)].release = left;
-}
-
-void CaseAnalysis::reset_monitor_starts() {
-  for (std::size_t k = 0; k < monitor_starts_.size(); ++k)
-    monitor_starts_[k] = stepper_->scene().monitors[k].position;
-}
 
 void CaseAnalysis::add_scale_warnings(const BoundingBox& box, double model_size) {
   const auto warn = [&](int line, const std::string& message) {
