@@ -31,6 +31,30 @@ Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
   const PhysicalMesh& physical = geometry_.physical;
   const double tolerance = 1e-9 * model_size_;
   Scene scene;
+  // The stage that excavates each region, up to this one (-1: none): what this stage puts
+  // on such material would hold or load nothing.
+  std::vector<int> removed_by(physical.regions.size(), -1);
+  for (int k = 0; k <= stage && k < static_cast<int>(spec_.stages.size()); ++k) {
+    for (const std::string& name : spec_.stages[at(k)].excavate) {
+      const int region = physical.find_region(name);
+      if (region >= 0 && removed_by[at(region)] < 0)
+        removed_by[at(region)] = k;
+    }
+  }
+  const auto removed = [&](int element) {
+    return removed_by[at(model_.elements[at(element)].material)];
+  };
+  const auto refuse_if_removed = [&](int element, int line, const std::string& what) {
+    const int k = removed(element);
+    if (k < 0)
+      return;
+    fail(spec_, line,
+         what + " lies in " +
+             in_quotes(physical.regions[at(model_.elements[at(element)].material)].name) +
+             ", which [[stage]] " + in_quotes(spec_.stages[at(k)].name) +
+             " excavates, so it would act on nothing; move it into the material that stays, "
+             "or start it with an earlier stage");
+  };
   // Supports.
   for (const BoundarySpec& b : spec_.boundaries) {
     if (b.stage != stage)
@@ -39,6 +63,11 @@ Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
       const int curve = resolve_curve(spec_, physical, model_, "[[boundary]]", b.target, b.line);
       const std::vector<SupportPoint> points = curve_support_points(
           model_, curve, b.fix_x, b.fix_y, b.method, "curve " + in_quotes(b.target));
+      if (!points.empty() && std::all_of(points.begin(), points.end(), [&](const SupportPoint& p) {
+            return removed(p.point.element) >= 0;
+          }))
+        refuse_if_removed(points.front().point.element, b.line,
+                          "[[boundary]] curve " + in_quotes(b.target));
       scene.supports.insert(scene.supports.end(), points.begin(), points.end());
     } else {
       const int group = resolve_point_group(spec_, physical, "[[boundary]]", b.target, b.line);
@@ -51,6 +80,8 @@ Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
                    " lies outside the material, so it cannot hold anything; move it onto or "
                    "into a Physical Surface");
         }
+        refuse_if_removed(element, b.line,
+                          "[[boundary]] point " + in_quotes(b.target) + " at " + point_text(x));
         SupportPoint support;
         support.point = {element, x};
         support.fix_x = b.fix_x;
@@ -81,6 +112,8 @@ Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
                    " lies outside the material, so the force would act on nothing; move it "
                    "onto or into a Physical Surface");
         }
+        refuse_if_removed(element, load.line,
+                          "[[load]] point " + in_quotes(load.target) + " at " + point_text(x));
         scene.point_loads.push_back({{element, x}, load.vector, ramp_of(load, start_time)});
       }
       break;
@@ -108,6 +141,16 @@ Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
     }
   }
   scene.bolts = place_bolts(spec_, physical, model_, tolerance, stage);
+  for (const Bolt& bolt : scene.bolts) {
+    const auto spec = std::find_if(spec_.bolts.begin(), spec_.bolts.end(), [&](const BoltSpec& b) {
+      return b.stage == stage && (bolt.name == b.name || bolt.name.starts_with(b.name + "_"));
+    });
+    const int line = spec == spec_.bolts.end() ? 0 : spec->line;
+    for (const MaterialPoint& end : {bolt.bars.front().a, bolt.bars.back().b})
+      refuse_if_removed(end.element, line,
+                        "[[bolt]] " + in_quotes(bolt.name) + ": its end " +
+                            point_text(end.position));
+  }
   return scene;
 }
 

@@ -201,6 +201,22 @@ TEST_F(StagedRun, ExcavationsAreCheckedAgainstTheGeometry) {
             std::string::npos);
 }
 
+TEST_F(StagedRun, ALaterStagesPointOnExcavatedMaterialIsAnError) {
+  // A point load in stage "b" at the pit's middle (2, 1.5), after stage "a" excavated the
+  // pit: refused when the case is read, before the run writes anything.
+  write_text(dir() / "pit.geo", std::string(pit_geo) + "Point(20) = {2.0, 1.5, 0};\n"
+                                                       "Physical Point(\"middle\") = {20};\n");
+  const std::string text =
+      "[[stage]]\nname = \"a\"\nsteps = 1\nexcavate = [\"pit\"]\n[[stage]]\nname = \"b\"\n"
+      "steps = 1\n[[stage.load]]\npoint = \"middle\"\nforce = [0.0, -1.0e3]\n";
+  const std::string message = error_of(text);
+  EXPECT_NE(message.find("[[load]] point \"middle\" at (2, 1.5) lies in \"pit\", which [[stage]] "
+                         "\"a\" excavates, so it would act on nothing"),
+            std::string::npos)
+      << message;
+  write_text(dir() / "pit.geo", pit_geo);
+}
+
 TEST_F(StagedRun, NamesItsStagesAndLeavesTheExcavatedCellsOut) {
   CaseAnalysis analysis(read_case_file(
       write("[[stage]]\nname = \"in_situ\"\nsteps = 1\n[[stage]]\nname = \"dig\"\nsteps = 2\n"
