@@ -313,14 +313,9 @@ std::vector<BlockState> block_states(const Model& model,
     else if (sliding[b])
       states[b] = BlockState::sliding;
   }
-  // A block all of whose material a stage excavated.
-  std::vector<char> left(n_blocks, 0);
-  for (const ModelElement& element : model.elements) {
-    if (!element.excavated && static_cast<std::size_t>(element.block) < n_blocks)
-      left[static_cast<std::size_t>(element.block)] = 1;
-  }
-  for (std::size_t b = 0; b < n_blocks; ++b) {
-    if (left[b] == 0)
+  const std::vector<char> excavated = model.excavated_blocks();
+  for (std::size_t b = 0; b < n_blocks && b < excavated.size(); ++b) {
+    if (excavated[b] != 0)
       states[b] = BlockState::excavated;
   }
   return states;

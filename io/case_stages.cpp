@@ -25,65 +25,49 @@ Ramp ramp_of(const LoadSpec& load, double start) {
   return {start + load.ramp_start, start + load.ramp_end};
 }
 
-} // namespace
-
-Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
-  const PhysicalMesh& physical = geometry_.physical;
-  const double tolerance = 1e-9 * model_size_;
-  Scene scene;
-  // The stage that excavates each region, up to this one (-1: none): what this stage puts
-  // on such material would hold or load nothing.
-  std::vector<int> removed_by(physical.regions.size(), -1);
-  for (int k = 0; k <= stage && k < static_cast<int>(spec_.stages.size()); ++k) {
-    for (const std::string& name : spec_.stages[at(k)].excavate) {
-      const int region = physical.find_region(name);
-      if (region >= 0 && removed_by[at(region)] < 0)
-        removed_by[at(region)] = k;
+/// Places what a stage starts (its supports, loads and bolts) in the model as it is, each
+/// checked against the material: outside it, or wholly in a region that stage or an earlier
+/// one excavates, it is an error naming the case file's line.
+class StagePlacer {
+public:
+  StagePlacer(const CaseSpec& spec,
+              const PhysicalMesh& physical,
+              const Model& model,
+              double tolerance,
+              int stage)
+      : spec_(spec), physical_(physical), model_(model), tolerance_(tolerance), stage_(stage),
+        removed_by_(physical.regions.size(), -1) {
+    for (int k = 0; k <= stage && k < static_cast<int>(spec.stages.size()); ++k) {
+      for (const std::string& name : spec.stages[at(k)].excavate) {
+        const int region = physical.find_region(name);
+        if (region >= 0 && removed_by_[at(region)] < 0)
+          removed_by_[at(region)] = k;
+      }
     }
   }
-  const auto removed = [&](int element) {
-    return removed_by[at(model_.elements[at(element)].material)];
-  };
-  const auto refuse_if_removed = [&](int element, int line, const std::string& what) {
-    const int k = removed(element);
-    if (k < 0)
-      return;
-    fail(spec_, line,
-         what + " lies in " +
-             in_quotes(physical.regions[at(model_.elements[at(element)].material)].name) +
-             ", which [[stage]] " + in_quotes(spec_.stages[at(k)].name) +
-             " excavates, so it would act on nothing; move it into the material that stays, "
-             "or start it with an earlier stage");
-  };
-  // Supports.
-  for (const BoundarySpec& b : spec_.boundaries) {
-    if (b.stage != stage)
-      continue;
-    if (b.is_curve) {
-      const int curve = resolve_curve(spec_, physical, model_, "[[boundary]]", b.target, b.line);
-      const std::vector<SupportPoint> points = curve_support_points(
-          model_, curve, b.fix_x, b.fix_y, b.method, "curve " + in_quotes(b.target));
-      if (!points.empty() && std::all_of(points.begin(), points.end(), [&](const SupportPoint& p) {
-            return removed(p.point.element) >= 0;
-          }))
-        refuse_if_removed(points.front().point.element, b.line,
-                          "[[boundary]] curve " + in_quotes(b.target));
-      scene.supports.insert(scene.supports.end(), points.begin(), points.end());
-    } else {
-      const int group = resolve_point_group(spec_, physical, "[[boundary]]", b.target, b.line);
-      for (const Point2& x : physical.points[at(group)].points) {
-        const int element = model_.find_element(x, tolerance);
-        if (element < 0) {
-          fail(spec_, b.line,
-               "[[boundary]] point " + in_quotes(b.target) + ": the point " + point_text(x) +
-                   " of " + geometry_name(spec_) +
-                   " lies outside the material, so it cannot hold anything; move it onto or "
-                   "into a Physical Surface");
-        }
-        refuse_if_removed(element, b.line,
-                          "[[boundary]] point " + in_quotes(b.target) + " at " + point_text(x));
+
+  void add_supports(Scene& scene) const {
+    for (const BoundarySpec& b : spec_.boundaries) {
+      if (b.stage != stage_)
+        continue;
+      if (b.is_curve) {
+        const int curve = resolve_curve(spec_, physical_, model_, "[[boundary]]", b.target, b.line);
+        const std::vector<SupportPoint> points = curve_support_points(
+            model_, curve, b.fix_x, b.fix_y, b.method, "curve " + in_quotes(b.target));
+        if (!points.empty() &&
+            std::all_of(points.begin(), points.end(),
+                        [&](const SupportPoint& p) { return removed_by(p.point.element) >= 0; }))
+          refuse_if_removed(points.front().point.element, b.line,
+                            "[[boundary]] curve " + in_quotes(b.target));
+        scene.supports.insert(scene.supports.end(), points.begin(), points.end());
+        continue;
+      }
+      const int group = resolve_point_group(spec_, physical_, "[[boundary]]", b.target, b.line);
+      for (const Point2& x : physical_.points[at(group)].points) {
         SupportPoint support;
-        support.point = {element, x};
+        support.point = {element_at(x, b.line, "[[boundary]] point " + in_quotes(b.target),
+                                    "it cannot hold anything"),
+                         x};
         support.fix_x = b.fix_x;
         support.fix_y = b.fix_y;
         support.method = b.method;
@@ -93,64 +77,118 @@ Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
       }
     }
   }
-  // Loads.
-  for (const LoadSpec& load : spec_.loads) {
-    if (load.stage != stage)
-      continue;
-    switch (load.kind) {
-    case LoadKind::gravity:
-      scene.body_loads.push_back({load.vector, ramp_of(load, start_time)});
-      break;
-    case LoadKind::point: {
-      const int group = resolve_point_group(spec_, physical, "[[load]]", load.target, load.line);
-      for (const Point2& x : physical.points[at(group)].points) {
-        const int element = model_.find_element(x, tolerance);
-        if (element < 0) {
-          fail(spec_, load.line,
-               "[[load]] point " + in_quotes(load.target) + ": the point " + point_text(x) +
-                   " of " + geometry_name(spec_) +
-                   " lies outside the material, so the force would act on nothing; move it "
-                   "onto or into a Physical Surface");
-        }
-        refuse_if_removed(element, load.line,
-                          "[[load]] point " + in_quotes(load.target) + " at " + point_text(x));
-        scene.point_loads.push_back({{element, x}, load.vector, ramp_of(load, start_time)});
+
+  /// The loads' ramps count from @p start_time (s).
+  void add_loads(Scene& scene, double start_time) const {
+    for (const LoadSpec& load : spec_.loads) {
+      if (load.stage != stage_)
+        continue;
+      switch (load.kind) {
+      case LoadKind::gravity:
+        scene.body_loads.push_back({load.vector, ramp_of(load, start_time)});
+        break;
+      case LoadKind::point: {
+        const int group = resolve_point_group(spec_, physical_, "[[load]]", load.target, load.line);
+        for (const Point2& x : physical_.points[at(group)].points)
+          scene.point_loads.push_back(
+              {{element_at(x, load.line, "[[load]] point " + in_quotes(load.target),
+                           "the force would act on nothing"),
+                x},
+               load.vector,
+               ramp_of(load, start_time)});
+        break;
       }
-      break;
-    }
-    case LoadKind::traction:
-    case LoadKind::pressure: {
-      const int curve = resolve_curve(spec_, physical, model_, "[[load]]", load.target, load.line);
-      CurveLoad curve_load;
-      curve_load.curve = curve;
-      curve_load.is_pressure = load.kind == LoadKind::pressure;
-      curve_load.traction = load.vector;
-      curve_load.pressure = load.pressure;
-      curve_load.ramp = ramp_of(load, start_time);
-      if (load.water_level) {
-        // Hydrostatic: gamma (level - y) below the water surface, at the current position.
-        const double level = *load.water_level;
-        const double gamma = load.water_unit_weight;
-        curve_load.pressure_at = [level, gamma](const Point2& x) {
-          return gamma * std::max(0.0, level - x.y());
-        };
+      case LoadKind::traction:
+      case LoadKind::pressure:
+        scene.curve_loads.push_back(curve_load(load, start_time));
+        break;
       }
-      scene.curve_loads.push_back(curve_load);
-      break;
-    }
     }
   }
-  scene.bolts = place_bolts(spec_, physical, model_, tolerance, stage);
-  for (const Bolt& bolt : scene.bolts) {
-    const auto spec = std::find_if(spec_.bolts.begin(), spec_.bolts.end(), [&](const BoltSpec& b) {
-      return b.stage == stage && (bolt.name == b.name || bolt.name.starts_with(b.name + "_"));
-    });
-    const int line = spec == spec_.bolts.end() ? 0 : spec->line;
-    for (const MaterialPoint& end : {bolt.bars.front().a, bolt.bars.back().b})
-      refuse_if_removed(end.element, line,
-                        "[[bolt]] " + in_quotes(bolt.name) + ": its end " +
-                            point_text(end.position));
+
+  void add_bolts(Scene& scene) const {
+    scene.bolts = place_bolts(spec_, physical_, model_, tolerance_, stage_);
+    for (const Bolt& bolt : scene.bolts) {
+      const auto spec =
+          std::find_if(spec_.bolts.begin(), spec_.bolts.end(), [&](const BoltSpec& b) {
+            return b.stage == stage_ &&
+                   (bolt.name == b.name || bolt.name.starts_with(b.name + "_"));
+          });
+      const int line = spec == spec_.bolts.end() ? 0 : spec->line;
+      for (const MaterialPoint& end : {bolt.bars.front().a, bolt.bars.back().b})
+        refuse_if_removed(end.element, line,
+                          "[[bolt]] " + in_quotes(bolt.name) + ": its end " +
+                              point_text(end.position));
+    }
   }
+
+private:
+  /// The stage that excavates @p element's region, up to this one; -1: none.
+  [[nodiscard]] int removed_by(int element) const {
+    return removed_by_[at(model_.elements[at(element)].material)];
+  }
+
+  void refuse_if_removed(int element, int line, const std::string& what) const {
+    const int k = removed_by(element);
+    if (k < 0)
+      return;
+    fail(spec_, line,
+         what + " lies in " +
+             in_quotes(physical_.regions[at(model_.elements[at(element)].material)].name) +
+             ", which [[stage]] " + in_quotes(spec_.stages[at(k)].name) +
+             " excavates, so it would act on nothing; move it into the material that stays, "
+             "or start it with an earlier stage");
+  }
+
+  /// The element holding point @p x of @p what (a Physical Point's), checked.
+  [[nodiscard]] int element_at(const Point2& x,
+                               int line,
+                               const std::string& what,
+                               const std::string& consequence) const {
+    const int element = model_.find_element(x, tolerance_);
+    if (element < 0)
+      fail(spec_, line,
+           what + ": the point " + point_text(x) + " of " + geometry_name(spec_) +
+               " lies outside the material, so " + consequence +
+               "; move it onto or into a Physical Surface");
+    refuse_if_removed(element, line, what + " at " + point_text(x));
+    return element;
+  }
+
+  [[nodiscard]] CurveLoad curve_load(const LoadSpec& load, double start_time) const {
+    CurveLoad curve_load;
+    curve_load.curve = resolve_curve(spec_, physical_, model_, "[[load]]", load.target, load.line);
+    curve_load.is_pressure = load.kind == LoadKind::pressure;
+    curve_load.traction = load.vector;
+    curve_load.pressure = load.pressure;
+    curve_load.ramp = ramp_of(load, start_time);
+    if (load.water_level) {
+      // Hydrostatic: gamma (level - y) below the water surface, at the current position.
+      const double level = *load.water_level;
+      const double gamma = load.water_unit_weight;
+      curve_load.pressure_at = [level, gamma](const Point2& x) {
+        return gamma * std::max(0.0, level - x.y());
+      };
+    }
+    return curve_load;
+  }
+
+  const CaseSpec& spec_;
+  const PhysicalMesh& physical_;
+  const Model& model_;
+  double tolerance_;
+  int stage_;
+  std::vector<int> removed_by_; ///< per region: the stage excavating it, -1: none
+};
+
+} // namespace
+
+Scene CaseAnalysis::stage_scene(int stage, double start_time) const {
+  const StagePlacer placer(spec_, geometry_.physical, model_, 1e-9 * model_size_, stage);
+  Scene scene;
+  placer.add_supports(scene);
+  placer.add_loads(scene, start_time);
+  placer.add_bolts(scene);
   return scene;
 }
 
@@ -221,12 +259,8 @@ void CaseAnalysis::begin_stage(int stage) {
 void CaseAnalysis::warn_about_contact_release(const StageSpec& stage) {
   if (stepper_->contact() == nullptr || stage.steps < 2)
     return;
-  std::vector<char> left(model_.blocks.size(), 0);
-  for (const ModelElement& element : model_.elements) {
-    if (!element.excavated)
-      left[at(element.block)] = 1;
-  }
-  const auto gone = static_cast<long>(std::count(left.begin(), left.end(), 0));
+  const std::vector<char> excavated = model_.excavated_blocks();
+  const auto gone = static_cast<long>(std::count(excavated.begin(), excavated.end(), 1));
   if (gone == 0)
     return;
   warnings_.push_back(spec_.file.filename().string() + ":" + std::to_string(stage.line) +

@@ -76,13 +76,12 @@ Point2 direction(const BoltBar& bar) {
   return length > 0.0 ? Point2(d / length) : Point2(1.0, 0.0);
 }
 
-/// b: the bar's elongation is b^T d on the unknowns of append_bar_dofs().
-Eigen::VectorXd elongation_vector(const Model& model, const BoltBar& bar) {
+/// b: the bar's elongation is b^T d on its unknowns @p dofs (append_bar_dofs()).
+Eigen::VectorXd
+elongation_vector(const Model& model, const BoltBar& bar, std::span<const int> dofs) {
   const Point2 n = direction(bar);
   const PointInterpolation ta = model.shape(bar.a.element).interpolation_at(bar.a.position);
   const PointInterpolation tb = model.shape(bar.b.element).interpolation_at(bar.b.position);
-  std::vector<int> dofs;
-  append_bar_dofs(model, bar, dofs);
   Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(dofs.size()));
   b.head(ta.cols()) = -(ta.transpose() * n);
   const std::span<const int> b_dofs = model.element_dofs(bar.b.element);
@@ -233,9 +232,10 @@ void append_bar_dofs(const Model& model, const BoltBar& bar, std::vector<int>& d
 void bar_spring(const Model& model,
                 const Bolt& bolt,
                 const BoltBar& bar,
+                std::span<const int> dofs,
                 Eigen::MatrixXd& stiffness,
                 Eigen::VectorXd& load) {
-  const Eigen::VectorXd b = elongation_vector(model, bar);
+  const Eigen::VectorXd b = elongation_vector(model, bar, dofs);
   if (!anchored(model, bar)) { // an end on excavated material: nothing to hold
     stiffness = Eigen::MatrixXd::Zero(b.size(), b.size());
     load = Eigen::VectorXd::Zero(b.size());
@@ -249,7 +249,7 @@ double elastic_energy(std::span<const Bolt> bolts) {
   double energy = 0.0;
   for (const Bolt& bolt : bolts) {
     for (const BoltBar& bar : bolt.bars)
-      energy += bar.force * bar.force / (2.0 * bar.stiffness);
+      energy += bar.elastic_energy();
   }
   return energy;
 }
@@ -261,8 +261,8 @@ BoltWork advance_bolts(const Model& model, std::span<Bolt> bolts, const Eigen::V
       if (bar.state == BoltState::ruptured)
         continue;
       if (!anchored(model, bar)) {
-        work.dissipated += bar.force * bar.force / (2.0 * bar.stiffness);
-        work.elastic_change -= bar.force * bar.force / (2.0 * bar.stiffness);
+        work.dissipated += bar.elastic_energy();
+        work.elastic_change -= bar.elastic_energy();
         bar.force = 0.0;
         continue;
       }
@@ -270,9 +270,9 @@ BoltWork advance_bolts(const Model& model, std::span<Bolt> bolts, const Eigen::V
                                           model.displacement(bar.a.element, bar.a.position, raw));
       const double tangent = tangent_stiffness(bolt, bar);
       work.quadratic += 0.5 * tangent * d * d;
-      const double before = bar.force * bar.force / (2.0 * bar.stiffness);
+      const double before = bar.elastic_energy();
       const double done = advance_bar(bolt, bar, d);
-      const double after = bar.force * bar.force / (2.0 * bar.stiffness);
+      const double after = bar.elastic_energy();
       work.elastic_change += after - before;
       work.dissipated += done - (after - before);
     }

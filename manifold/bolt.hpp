@@ -46,6 +46,9 @@ struct BoltBar {
   /// |force| at which it yields (next): the bolt's yield force, raised by hardening.
   double yield_force = std::numeric_limits<double>::infinity();
   BoltState state = BoltState::elastic;
+
+  /// N^2 / (2k), J (per metre in plane strain).
+  [[nodiscard]] double elastic_energy() const { return force * force / (2.0 * stiffness); }
 };
 
 /// A bolt: its bars and strength. Forces and stiffnesses are per metre of thickness in plane
@@ -85,13 +88,14 @@ struct Bolt {
 /// that the first does not have (neighbouring NMM elements share covers).
 void append_bar_dofs(const Model& model, const BoltBar& bar, std::vector<int>& dofs);
 
-/// A bar's contribution to a step on the unknowns of append_bar_dofs(): stiffness k b b^T
+/// A bar's contribution to a step on its unknowns @p dofs (append_bar_dofs()): stiffness k b b^T
 /// (hardening x k while yielding, zero when ruptured) and load -N b, with b^T d the bar's
 /// elongation along its current direction and N its force at the start of the step (Shi's step
 /// equilibrium with the bar's force carried like an element's initial stress).
 void bar_spring(const Model& model,
                 const Bolt& bolt,
                 const BoltBar& bar,
+                std::span<const int> dofs,
                 Eigen::MatrixXd& stiffness,
                 Eigen::VectorXd& load);
 

@@ -154,6 +154,9 @@ public:
   /// removed; a cover left with none has its unknowns fixed (excavated_cover_relations()).
   void excavate(const std::vector<int>& removed, double min_cover_area_ratio);
 
+  /// 1 for each block all of whose elements are excavated, else 0.
+  [[nodiscard]] std::vector<char> excavated_blocks() const;
+
   /// Every unknown of a cover all of whose elements are excavated, fixed to zero (nothing
   /// holds or moves it any more). Empty when nothing is excavated.
   [[nodiscard]] std::vector<LinearConstraint> excavated_cover_relations() const;

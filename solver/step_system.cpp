@@ -261,8 +261,8 @@ void assemble_bolts(const StepContext& context, Assembler& a, StepSystem& system
   std::size_t j = 0;
   for (const Bolt& bolt : context.scene.bolts) {
     for (const BoltBar& bar : bolt.bars) {
-      bar_spring(context.model, bolt, bar, stiffness, load);
       const std::span<const int> dofs = couplings.bar_unknowns(j);
+      bar_spring(context.model, bolt, bar, dofs, stiffness, load);
       for (std::size_t i = 0; i < dofs.size(); ++i)
         system.f(dofs[i]) += load(static_cast<Eigen::Index>(i));
       system.scatter(a, couplings.first_bar_plan + static_cast<int>(j), stiffness,
