@@ -22,6 +22,18 @@ using detail::GapProfile;
 using detail::offset_at;
 using detail::perp;
 
+namespace {
+
+/// Where the slave material point of @p p is in the boundary @p now.
+Point2 point_now(const ContactBoundary& now, const ContactPoint& p) {
+  if (!is_edge_pair(p.key))
+    return now.position[at(p.slave_edge)];
+  return (1.0 - p.u) * now.position[at(p.slave_edge)] +
+         p.u * now.position[at(now.next[at(p.slave_edge)])];
+}
+
+} // namespace
+
 ContactSystem::ContactSystem(ContactOptions options,
                              std::vector<std::vector<JointStrength>> strength_of_edge,
                              std::vector<std::vector<bool>> bonded_edge)
@@ -651,11 +663,43 @@ std::vector<ContactSystem::Place> ContactSystem::current_places(const Model& mod
   result.reserve(points_.size());
   for (const ContactPoint& p : points_) {
     Place place;
-    place.position = is_edge_pair(p.key) ? Point2((1.0 - p.u) * position[at(p.slave_edge)] +
-                                                  p.u * position[at(next[at(p.slave_edge)])])
-                                         : position[at(p.slave_edge)];
+    place.position = point_now(now, p);
     place.normal = perp(position[at(next[at(p.master)])] - position[at(p.master)]).normalized();
     result.push_back(place);
+  }
+  return result;
+}
+
+std::vector<ContactSystem::PointForce>
+ContactSystem::forces_of_excavated(const Model& model) const {
+  std::vector<PointForce> result;
+  if (points_.empty())
+    return result;
+  const ContactBoundary now = contact_boundary(model);
+  NMM_ASSERT(now.position.size() == boundary_.position.size(), "the boundary changed its vertices");
+  const auto excavated = [&](int edge) {
+    const int element = edge_element_[at(edge)];
+    return element >= 0 && model.elements[at(element)].excavated;
+  };
+  for (const ContactPoint& p : points_) {
+    const bool slave_gone = excavated(p.slave_edge);
+    if (slave_gone == excavated(p.master) || (p.normal_force == 0.0 && p.shear_force == 0.0))
+      continue;
+    const Point2 slave = point_now(now, p);
+    const Point2& a = now.position[at(p.master)];
+    const Point2 edge = now.position[at(now.next[at(p.master)])] - a;
+    const Point2 tangent = edge.normalized();
+    const Point2 normal = perp(tangent); // out of the master, towards the slave
+    // The master presses the slave with N n and pulls it against the shear force, -S t;
+    // the slave the master with the opposite (set_forces()).
+    const Point2 on_slave = p.normal_force * normal - p.shear_force * tangent;
+    if (!slave_gone) {
+      result.push_back({{edge_element_[at(p.slave_edge)], slave}, on_slave});
+      continue;
+    }
+    // On the master: at the slave point's projection on its edge, kept on the edge.
+    const double s = std::clamp((slave - a).dot(edge) / edge.squaredNorm(), 0.0, 1.0);
+    result.push_back({{edge_element_[at(p.master)], a + s * edge}, -on_slave});
   }
   return result;
 }

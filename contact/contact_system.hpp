@@ -292,6 +292,17 @@ public:
   };
   /// The Place of every point, for output.
   [[nodiscard]] std::vector<Place> current_places(const Model& model) const;
+  /// A force on a material point, N (per metre of thickness in plane strain).
+  struct PointForce {
+    MaterialPoint point;
+    Point2 force = Point2::Zero();
+  };
+  /// The forces with which the last step's contacts between material just excavated
+  /// (ModelElement::excavated, set since that step) and material left press and pull on the
+  /// material left, each at its material point where it acts (the slave point, or its
+  /// projection on the master edge), in the model's current geometry: what the excavation
+  /// takes off the rest at those contacts, for a stage to release over its steps.
+  [[nodiscard]] std::vector<PointForce> forces_of_excavated(const Model& model) const;
   /// A description of point i for messages ("vertex (x, y) against edge (x1, y1)-(x2, y2)").
   [[nodiscard]] std::string describe(int i) const;
   /// The point of the contact that changed last in the open-close iteration (for the message

@@ -102,10 +102,11 @@ public:
   void restore_monitor_starts(std::vector<Point2> starts);
   /// The start of `[[stage]]` @p stage (CaseSpec::stages index): its analysis kind, its
   /// supports, loads and bolts (those of stage 0 are in the scene from the start), and its
-  /// excavation, whose elements then release all of their loads (set_release()).
+  /// excavation, whose elements then release all of their loads and the forces of their
+  /// contacts with the rest (set_release()).
   void begin_stage(int stage);
-  /// The fraction of their loads the elements the current stage excavates still apply, in
-  /// [0, 1] (1 at its start, 0 by its last step).
+  /// The fraction of their loads and contact forces the elements the current stage excavates
+  /// still apply, in [0, 1] (1 at its start, 0 by its last step).
   void set_release(double left);
   /// `reset_displacement`: the monitors count their displacement from where they are now.
   void reset_monitor_starts();
@@ -136,9 +137,6 @@ private:
   std::vector<std::string> warnings_;
   double model_size_ = 1.0; ///< of the material's bounding box, m
   std::vector<std::string> bolt_names_;
-  /// A warning when stage @p stage excavates whole blocks of a scene with contact: their
-  /// contacts' forces go at once, not over the stage's steps.
-  void warn_about_contact_release(const StageSpec& stage);
   /// The elements the current stage excavates (set_release()).
   std::vector<int> releasing_;
   std::unique_ptr<TimeStepper> stepper_;

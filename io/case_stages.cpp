@@ -252,31 +252,15 @@ void CaseAnalysis::begin_stage(int stage) {
   if (!releasing_.empty()) {
     model_.excavate(releasing_, spec_.cover_mesh.min_cover_area_ratio);
     stepper_->material_removed();
-    warn_about_contact_release(spec);
   }
 }
 
-void CaseAnalysis::warn_about_contact_release(const StageSpec& stage) {
-  if (stepper_->contact() == nullptr || stage.steps < 2)
-    return;
-  const std::vector<char> excavated = model_.excavated_blocks();
-  const auto gone = static_cast<long>(std::count(excavated.begin(), excavated.end(), 1));
-  if (gone == 0)
-    return;
-  warnings_.push_back(spec_.file.filename().string() + ":" + std::to_string(stage.line) +
-                      ": [[stage]] " + in_quotes(stage.name) + " excavates " +
-                      std::to_string(gone) +
-                      " whole block(s): the forces of their contacts with the rest go at "
-                      "once in the stage's first step, not over its " +
-                      std::to_string(stage.steps) +
-                      " steps (only loads inside a block are released gradually), and static "
-                      "steps from such a jump can jack jointed rock; check the blocks' "
-                      "displacements and the energy balance");
-}
-
 void CaseAnalysis::set_release(double left) {
+  if (releasing_.empty())
+    return;
   for (const int e : releasing_)
     model_.elements[at(e)].release = left;
+  stepper_->set_contact_release(left);
 }
 
 void CaseAnalysis::reset_monitor_starts() {

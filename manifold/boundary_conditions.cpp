@@ -121,7 +121,7 @@ void element_load(const Model& model,
 }
 
 void add_point_load(const Model& model, const PointLoad& load, double time, Eigen::VectorXd& f) {
-  const double factor = load.ramp.at(time);
+  const double factor = load.scale * load.ramp.at(time);
   if (factor == 0.0 || load.point.element < 0 || model.elements[at(load.point.element)].excavated)
     return;
   const PointInterpolation t =

@@ -61,6 +61,9 @@ struct PointLoad {
   MaterialPoint point;
   Point2 force = Point2::Zero();
   Ramp ramp;
+  /// A factor on the ramp's: the contact forces an excavation takes off the material left
+  /// fall from 1 to 0 over its stage (TimeStepper::set_contact_release()); 1 for the rest.
+  double scale = 1.0;
 };
 
 /// A traction (Pa, vector) or a pressure (Pa, positive pushing into the material) on a named

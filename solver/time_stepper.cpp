@@ -37,6 +37,10 @@ struct TimeStepper::Impl {
   SolverCounters restored_counters;
   /// The order-1 dependency fixes are chosen again after every step (rechosen_dependencies()).
   bool rechoose_dependencies = false;
+  /// Where the contact forces of the last excavation are in Scene::point_loads: from
+  /// released_from on, released_count of them (material_removed(); later stages' loads follow).
+  std::size_t released_from = 0;
+  std::size_t released_count = 0;
 };
 
 namespace {
@@ -188,7 +192,28 @@ void TimeStepper::add_to_scene(const Scene& more) {
   scene_.bolts.insert(scene_.bolts.end(), more.bolts.begin(), more.bolts.end());
 }
 
-void TimeStepper::material_removed() { impl_->system.dependencies = model_.dependency_relations(); }
+void TimeStepper::material_removed() {
+  impl_->system.dependencies = model_.dependency_relations();
+  std::vector<PointLoad>& loads = scene_.point_loads;
+  const auto first = loads.begin() + static_cast<std::ptrdiff_t>(impl_->released_from);
+  loads.erase(first, first + static_cast<std::ptrdiff_t>(impl_->released_count));
+  impl_->released_from = loads.size();
+  impl_->released_count = 0;
+  if (!impl_->contact)
+    return;
+  for (const ContactSystem::PointForce& f : impl_->contact->forces_of_excavated(model_)) {
+    PointLoad load;
+    load.point = f.point;
+    load.force = f.force;
+    loads.push_back(load);
+  }
+  impl_->released_count = loads.size() - impl_->released_from;
+}
+
+void TimeStepper::set_contact_release(double left) {
+  for (std::size_t k = 0; k < impl_->released_count; ++k)
+    scene_.point_loads[impl_->released_from + k].scale = left;
+}
 
 StepReport TimeStepper::step(double until) { return advance(until, false); }
 

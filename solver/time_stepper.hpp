@@ -228,8 +228,13 @@ public:
   /// scene for the next steps. @p more's monitors are ignored.
   void add_to_scene(const Scene& more);
   /// Elements were excavated (ModelElement::excavated): the order-1 dependencies are chosen
-  /// again for the material left.
+  /// again for the material left, and the forces with which the last step's contacts of the
+  /// excavated material held the rest become point loads on the rest
+  /// (ContactSystem::forces_of_excavated()), released by set_contact_release() (those of an
+  /// earlier excavation, released by now, are dropped).
   void material_removed();
+  /// The part @p left (1 to 0) of the contact forces of the last excavation still applied.
+  void set_contact_release(double left);
 
   /// One time step ending at most at @p until (s). @throws NumericalError when the step
   /// cannot be solved even after max_step_cuts cuts, with what went wrong.

@@ -40,7 +40,8 @@ constexpr double half = 60.0; // the quarter plate's side, m
 
 /// The quarter plate of side @p side with the quarter disc "tunnel" at the origin and the
 /// rock around it; without @p tunnel the opening is there from the start (no "tunnel").
-std::string plate_geo(double side = half, bool tunnel = true) {
+/// @p jointed: the circle is the joint "wall" between the two (two blocks in contact).
+std::string plate_geo(double side = half, bool tunnel = true, bool jointed = false) {
   std::ostringstream geo;
   geo << "a = " << radius << ";\nR = " << side << ";\nh = a / 20;\nH = 4.0;\n"
       << "Point(1) = {0, 0, 0, h};\nPoint(2) = {a, 0, 0, h};\nPoint(3) = {R, 0, 0, H};\n"
@@ -53,7 +54,8 @@ std::string plate_geo(double side = half, bool tunnel = true) {
   if (tunnel)
     geo << "Curve Loop(2) = {1, 7, 6};\nPlane Surface(2) = {2};\n"
         << "Physical Surface(\"tunnel\") = {2};\n"
-        << "Physical Curve(\"bottom\") = {1, 2};\nPhysical Curve(\"left\") = {5, 6};\n";
+        << "Physical Curve(\"bottom\") = {1, 2};\nPhysical Curve(\"left\") = {5, 6};\n"
+        << (jointed ? "Physical Curve(\"wall\") = {7};\n" : "");
   else
     geo << "Physical Curve(\"bottom\") = {2};\nPhysical Curve(\"left\") = {5};\n";
   return geo.str();
@@ -63,13 +65,15 @@ std::string plate_geo(double side = half, bool tunnel = true) {
 /// "excavate" of @p release_steps static steps removing "tunnel", displacements counted
 /// from its start; monitors just inside the rock at the side (a, 0) and the crown (0, a).
 /// @p cover_mesh replaces the [cover_mesh] keys; without @p tunnel, the opening of
-/// plate_geo(side, false) in one static step instead of the stages.
+/// plate_geo(side, false) in one static step instead of the stages. @p jointed: the joint
+/// "wall" of plate_geo(side, true, true), frictional.
 std::string plate_case(double sxx,
                        double syy,
                        int release_steps,
                        const std::string& cover_mesh = "kind = \"gmsh\"\ngeometry_sizes = true\n"
                                                        "size = 4.0\ncurve_tolerance = 1.0e-4\n",
-                       bool tunnel = true) {
+                       bool tunnel = true,
+                       bool jointed = false) {
   std::ostringstream text;
   text.precision(17);
   text << "geometry = \"plate.geo\"\n[cover_mesh]\n" << cover_mesh << "order = 1\n";
@@ -82,6 +86,7 @@ std::string plate_case(double sxx,
   text << "[[boundary]]\ncurve = \"left\"\nfix = \"x\"\n[[boundary]]\ncurve = \"bottom\"\n"
        << "fix = \"y\"\n[[load]]\ncurve = \"right\"\ntraction = [" << sxx << ", 0.0]\n"
        << "[[load]]\ncurve = \"top\"\ntraction = [0.0, " << syy << "]\n"
+       << (jointed ? "[joints.wall]\nfriction_angle = 30.0\n" : "")
        << "[analysis]\nkind = \"static\"\n"
        << (tunnel ? "" : "steps = 1\n") << "[[monitor]]\nname = \"side\"\npoint = ["
        << radius * (1.0 + 1e-6) << ", 0.0]\n"
@@ -99,25 +104,36 @@ struct WallValues {
   double side_hoop = 0.0;  ///< syy at (a, 0), Pa
   double crown_hoop = 0.0; ///< sxx at (0, a), Pa
   double in_situ_u = 0.0;  ///< the largest monitor displacement after stage 1, m
-  std::string history;     ///< history.csv
-  std::string summary;     ///< summary.json
+  /// ux at (a, 0) and uy at (0, a) at the end of each step of the excavation's stage, m.
+  std::vector<double> side_steps;
+  std::vector<double> crown_steps;
+  std::vector<std::string> warnings;
+  std::string history; ///< history.csv
+  std::string summary; ///< summary.json
 };
 
-WallValues excavate(double sxx, double syy, int release_steps) {
+WallValues excavate(double sxx, double syy, int release_steps, bool jointed = false) {
   const TempDir dir("nmm_excavation");
-  write_text(dir.path() / "plate.geo", plate_geo());
-  write_text(dir.path() / "case.toml", plate_case(sxx, syy, release_steps));
+  write_text(dir.path() / "plate.geo", plate_geo(half, true, jointed));
+  const std::string cover_mesh = "kind = \"gmsh\"\ngeometry_sizes = true\nsize = 4.0\n"
+                                 "curve_tolerance = 1.0e-4\n";
+  write_text(dir.path() / "case.toml",
+             plate_case(sxx, syy, release_steps, cover_mesh, true, jointed));
   CaseAnalysis analysis(read_case_file(dir.path() / "case.toml"));
   RunOptions options;
   options.output_dir = dir.path() / "out";
   WallValues wall;
   options.on_step = [&](const RunProgress& progress) {
+    const std::vector<MonitorValues> now = analysis.monitor_values();
     if (progress.report->step == 1) {
-      for (const MonitorValues& m : analysis.monitor_values())
+      for (const MonitorValues& m : now)
         wall.in_situ_u = std::max({wall.in_situ_u, std::abs(m.ux), std::abs(m.uy)});
+    } else {
+      wall.side_steps.push_back(now[0].ux);
+      wall.crown_steps.push_back(now[1].uy);
     }
   };
-  (void)run_case(analysis, options);
+  wall.warnings = run_case(analysis, options).warnings;
   const std::vector<MonitorValues> m = analysis.monitor_values();
   wall.side_u = m[0].ux;
   wall.side_hoop = m[0].syy;
@@ -181,6 +197,142 @@ INSTANTIATE_TEST_SUITE_P(Stages,
                          ::testing::Values(InSitu{-5.0e6, -10.0e6, 4},    // k0 = 0.5, released in 4
                                            InSitu{-8.0e6, -8.0e6, 1},     // hydrostatic, at once
                                            InSitu{-12.0e6, -6.0e6, 10})); // k0 = 2
+
+/// The opening's disc a block of its own, held by the frictional joint "wall" along the
+/// circle (its springs preloaded with the in-situ traction, so that stage 1 is in
+/// equilibrium): excavated, the disc's contacts go with it, and the forces they held the rock
+/// with are released as loads on the rock's wall, evenly over the stage's steps, as the
+/// tractions of the continuous region above are. Step by step the wall moves as the
+/// continuous rock's does, to 1e-3 of the excavation's displacement (measured: 1e-4, the
+/// contact points' forces standing for the traction along the wall), the first step by
+/// 1/n of it to 1% (the continuous rock's steps themselves differ by 0.5%: stresses added
+/// on the moved geometry), and the wall ends as Kirsch's hole to 2%. All at once, the
+/// first step would move it the whole way.
+class JointedOpening : public ::testing::TestWithParam<InSitu> {};
+
+TEST_P(JointedOpening, ReleasesItsContactForcesAsTheContinuousRocksTractions) {
+  const InSitu& c = GetParam();
+  const WallValues wall = excavate(c.sxx, c.syy, c.release_steps, true);
+  const WallValues rock = excavate(c.sxx, c.syy, c.release_steps, false);
+  constexpr double pi = 3.14159265358979323846;
+  const double side_u = kirsch_u(c.sxx, c.syy, 0.0);
+  const double crown_u = kirsch_u(c.sxx, c.syy, pi / 2.0);
+  std::printf("[excavation] jointed, sxx %g syy %g, %d steps: side u %.5f, crown u %.5f, side "
+              "hoop %.5f, crown hoop %.5f of Kirsch; stage 1 moved %.3g m; first step %.5f "
+              "of 1/n\n",
+              c.sxx, c.syy, c.release_steps, wall.side_u / side_u, wall.crown_u / crown_u,
+              wall.side_hoop / kirsch_hoop(c.sxx, c.syy, 0.0),
+              wall.crown_hoop / kirsch_hoop(c.sxx, c.syy, pi / 2.0), wall.in_situ_u,
+              wall.crown_steps.front() * c.release_steps / wall.crown_u);
+  EXPECT_NEAR(wall.side_u, side_u, 0.02 * std::abs(side_u));
+  EXPECT_NEAR(wall.crown_u, crown_u, 0.02 * std::abs(crown_u));
+  EXPECT_NEAR(wall.side_hoop, kirsch_hoop(c.sxx, c.syy, 0.0),
+              0.02 * std::abs(kirsch_hoop(c.sxx, c.syy, 0.0)));
+  EXPECT_NEAR(wall.crown_hoop, kirsch_hoop(c.sxx, c.syy, pi / 2.0),
+              0.02 * std::abs(kirsch_hoop(c.sxx, c.syy, pi / 2.0)));
+  EXPECT_LT(wall.in_situ_u, 1e-6 * std::abs(crown_u));
+  ASSERT_EQ(wall.side_steps.size(), static_cast<std::size_t>(c.release_steps));
+  ASSERT_EQ(rock.side_steps.size(), wall.side_steps.size());
+  for (std::size_t i = 0; i < wall.side_steps.size(); ++i) {
+    EXPECT_NEAR(wall.side_steps[i], rock.side_steps[i], 1e-3 * std::abs(rock.side_u))
+        << "step " << i + 1;
+    EXPECT_NEAR(wall.crown_steps[i], rock.crown_steps[i], 1e-3 * std::abs(rock.crown_u))
+        << "step " << i + 1;
+  }
+  const double n = c.release_steps;
+  EXPECT_NEAR(wall.crown_steps.front(), wall.crown_u / n, 0.01 * std::abs(wall.crown_u) / n);
+  EXPECT_NEAR(wall.side_steps.front(), wall.side_u / n, 0.01 * std::abs(wall.side_u) / n);
+  for (const std::string& warning : wall.warnings)
+    ADD_FAILURE() << warning;
+}
+
+INSTANTIATE_TEST_SUITE_P(Stages,
+                         JointedOpening,
+                         ::testing::Values(InSitu{-5.0e6, -10.0e6, 4},    // k0 = 0.5
+                                           InSitu{-12.0e6, -6.0e6, 10})); // k0 = 2
+
+/// A block of rock of length L beside a prop block, both under the in-situ stress (-p, -p),
+/// between rollers (top and bottom held in y, the outer ends in x) and joined by the joint
+/// "cut" at x = L: excavating the prop frees the rock's face, which the forces of their
+/// contacts held. Released over n steps, the face moves by k/n of p L / M at step k (M =
+/// E (1 - nu) / ((1 + nu) (1 - 2 nu)), the constrained modulus of plane strain: the rock
+/// keeps eyy = 0), its sxx goes to 0 and its syy to -p (1 - nu / (1 - nu)). Constant strain:
+/// exact for DDA and VEM blocks and NMM covers of either order, to the solver's rounding
+/// and the monitor's 1e-6 m from the face (1e-4 of the displacement).
+struct Box {
+  std::string model; ///< the materials' model
+  std::string cover; ///< the [cover_mesh] keys
+  double length;     ///< L, m
+  int release_steps; ///< n
+};
+
+class ExcavatedProp : public ::testing::TestWithParam<Box> {};
+
+TEST_P(ExcavatedProp, FreesTheRocksFaceEvenlyOverTheStage) {
+  const Box& box = GetParam();
+  const double p = 2.0e6;
+  const double length = box.length;
+  std::ostringstream geo;
+  geo << "L = " << length << ";\nPoint(1) = {0, 0, 0};\nPoint(2) = {L, 0, 0};\n"
+      << "Point(3) = {2 * L, 0, 0};\nPoint(4) = {2 * L, 1, 0};\nPoint(5) = {L, 1, 0};\n"
+      << "Point(6) = {0, 1, 0};\nLine(1) = {1, 2};\nLine(2) = {2, 3};\nLine(3) = {3, 4};\n"
+      << "Line(4) = {4, 5};\nLine(5) = {5, 6};\nLine(6) = {6, 1};\nLine(7) = {2, 5};\n"
+      << "Curve Loop(1) = {1, 7, 5, 6};\nPlane Surface(1) = {1};\n"
+      << "Curve Loop(2) = {2, 3, 4, -7};\nPlane Surface(2) = {2};\n"
+      << "Physical Surface(\"rock\") = {1};\nPhysical Surface(\"prop\") = {2};\n"
+      << "Physical Curve(\"cut\") = {7};\nPhysical Curve(\"ends\") = {3, 6};\n"
+      << "Physical Curve(\"rollers\") = {1, 2, 4, 5};\n";
+  std::ostringstream text;
+  text.precision(17);
+  text << "geometry = \"box.geo\"\n[cover_mesh]\n" << box.cover << "\n";
+  for (const char* material : {"rock", "prop"})
+    text << "[materials." << material << "]\nmodel = \"" << box.model << "\"\nyoung = " << young
+         << "\npoisson = " << poisson << "\ninitial_stress = [" << -p << ", " << -p << ", 0.0]\n";
+  text << "[joints.cut]\nfriction_angle = 30.0\n"
+       << "[[boundary]]\ncurve = \"ends\"\nfix = \"x\"\n"
+       << "[[boundary]]\ncurve = \"rollers\"\nfix = \"y\"\n"
+       << "[analysis]\nkind = \"static\"\n[[monitor]]\nname = \"face\"\npoint = [" << length - 1e-6
+       << ", 0.5]\n"
+       << "[[stage]]\nname = \"in_situ\"\nsteps = 1\n[[stage]]\nname = \"excavate\"\nsteps = "
+       << box.release_steps << "\nexcavate = [\"prop\"]\nreset_displacement = true\n";
+  SCOPED_TRACE(box.model + ", " + box.cover);
+  const TempDir dir("nmm_excavation_prop");
+  write_text(dir.path() / "box.geo", geo.str());
+  write_text(dir.path() / "case.toml", text.str());
+  CaseAnalysis analysis(read_case_file(dir.path() / "case.toml"));
+  RunOptions options;
+  options.output_dir = dir.path() / "out";
+  std::vector<MonitorValues> steps;
+  options.on_step = [&](const RunProgress& progress) {
+    if (progress.report->step > 1)
+      steps.push_back(analysis.monitor_values()[0]);
+  };
+  const RunResult result = run_case(analysis, options);
+  const double m = young * (1.0 - poisson) / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
+  const double u = p * length / m;
+  ASSERT_EQ(steps.size(), static_cast<std::size_t>(box.release_steps));
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const double done = static_cast<double>(k + 1) / box.release_steps;
+    EXPECT_NEAR(steps[k].ux, done * u, 1e-4 * u) << "step " << k + 1;
+    EXPECT_NEAR(steps[k].sxx, -(1.0 - done) * p, 1e-6 * p) << "step " << k + 1;
+  }
+  EXPECT_NEAR(steps.back().syy, -p * (1.0 - poisson / (1.0 - poisson)), 1e-6 * p);
+  // (Order-1 covers of a regular mesh warn that their release over steps is not verified
+  // near an opening's curved wall; here it is exact.)
+  for (const std::string& warning : result.warnings) {
+    if (warning.find("is not verified yet") == std::string::npos)
+      ADD_FAILURE() << warning;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Stages,
+    ExcavatedProp,
+    ::testing::Values(Box{"dda", "kind = \"regular\"\nsize = 0.5", 1.0, 5},
+                      Box{"vem", "kind = \"regular\"\nsize = 0.5", 2.5, 3},
+                      Box{"nmm", "kind = \"regular\"\nsize = 0.3", 1.0, 4},
+                      Box{"nmm", "kind = \"regular\"\nsize = 0.3\norder = 1", 2.5, 5},
+                      Box{"nmm", "kind = \"gmsh\"\nsize = 0.2\norder = 1", 1.0, 2}));
 
 /// The monitors' values at the end of the case @p text on plate_geo(@p side, @p tunnel).
 std::vector<MonitorValues> wall_after(const std::string& text, double side, bool tunnel) {

@@ -131,6 +131,60 @@ TEST(ContactDetection, ConvexCornerIntoAReflexCornerHasTwoEntranceLines) {
   EXPECT_EQ(masters, (std::set<int>{2, 3})); // the two edges of the reflex corner
 }
 
+/// Where a joint (V-W) meets a free face that curves away from the rock (the crown of an
+/// opening, reflex corners E1, E2, E3 along it), the corner V of the block on the joint's
+/// other side, behind the lines of E1's edges W-E1 and E1-E2 by at least @p behind: the
+/// block above has corners W (convex) and V, the triangle beside it V, P, W. Block "above"
+/// is loop 0 (W = 0, E1 = 1, E2 = 2, E3 = 3, V = 6), the triangle loop 1 (V = 7).
+ContactBoundary joint_at_a_curved_face(double behind) {
+  const std::vector<Point2> face = {{0.0, 0.0}, {0.3, 0.06}, {1.0, 0.13}, {1.6, 0.13}};
+  const Point2 joint = Point2(-0.08, 0.23).normalized(); // from W up to V
+  double along = 0.0; // V = W + along joint, behind both lines of E1's edges
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Point2 d = face[k + 1] - face[k];
+    const Point2 normal = Point2(d.y(), -d.x()).normalized(); // out of the rock, down
+    along = std::max(along, (-behind - normal.dot(face[0] - face[k])) / normal.dot(joint));
+  }
+  const Point2 v = face[0] + along * joint;
+  return boundary_of({{face[0], face[1], face[2], face[3], {0.9, 1.0}, {-0.3, 1.0}, v},
+                      {v, {-1.5, -0.4}, face[0]}});
+}
+
+TEST(ContactDetection, ACornerOnAJointBehindTheReflexCornersOfAFaceIsNoNewContact) {
+  // V lies on the block above's joint face, 0.24 m behind the lines of the reflex corner E1
+  // of its free face (within the contact distance of it; E2 and E3 are beyond): no new
+  // angle contact of V against the face's edges (0, 1, 2), only the joint's own pair. Locked from
+  // the start with its 0.24 m as the springs' zero, such a spring jacked a tunnel's crown once the
+  // blocks moved. Just within the depth a new contact may start (0.9 x penetration) the
+  // angle-to-angle contacts are made, just beyond it (1.1 x) not; closed in the last step, they are
+  // kept at any depth.
+  const auto against_face = [](const std::vector<ContactCandidate>& contacts) {
+    std::vector<ContactCandidate> found;
+    for (const ContactCandidate& c : contacts) {
+      if (c.slave == 7 && c.kind == ContactKind::vertex_edge && c.master <= 2)
+        found.push_back(c);
+    }
+    return found;
+  };
+  const DetectionOptions o = options(0.6); // penetration 0.06 m
+  EXPECT_TRUE(against_face(detect_contacts(joint_at_a_curved_face(0.24), o, {})).empty());
+  EXPECT_TRUE(
+      against_face(detect_contacts(joint_at_a_curved_face(1.1 * o.penetration), o, {})).empty());
+  const auto shallow =
+      against_face(detect_contacts(joint_at_a_curved_face(0.9 * o.penetration), o, {}));
+  ASSERT_FALSE(shallow.empty());
+  // Closed in the last step: kept at 0.24 m (made where new contacts may start 0.3 m deep).
+  DetectionOptions deep = o;
+  deep.penetration = 0.3;
+  std::vector<std::uint64_t> keep;
+  for (const ContactCandidate& c :
+       against_face(detect_contacts(joint_at_a_curved_face(0.24), deep, {})))
+    keep.push_back(c.key());
+  ASSERT_FALSE(keep.empty());
+  EXPECT_EQ(against_face(detect_contacts(joint_at_a_curved_face(0.24), o, keep)).size(),
+            keep.size());
+}
+
 TEST(ContactDetection, AThinBlockDoesNotTouchItselfAcrossItsThickness) {
   // A 0.001-thick plate: its top face is within the contact distance of its bottom face,
   // but on the material side of it (penetration 0.001 > the 0.0002 a new contact may have).

@@ -273,24 +273,5 @@ TEST_F(StagedRun, AStagesLoadActsFromItsStartOnly) {
   EXPECT_GT(before, without);
 }
 
-TEST_F(StagedRun, ExcavatingWholeBlocksOverStepsWarnsThatTheirContactsGoAtOnce) {
-  std::string text = base_case;
-  for (const char* material : {"[materials.rock]\n", "[materials.pit]\n"})
-    text.replace(text.find(material), std::string(material).size(),
-                 std::string(material) + "model = \"dda\"\n");
-  write_text(dir() / "case.toml",
-             text + "[[stage]]\nname = \"a\"\nsteps = 1\n[[stage]]\nname = \"dig\"\nsteps = 2\n"
-                    "excavate = [\"pit\"]\n");
-  CaseAnalysis analysis(read_case_file(dir() / "case.toml"));
-  RunOptions options;
-  options.output_dir = dir() / "out_blocks";
-  const RunResult result = run_case(analysis, options);
-  const auto found =
-      std::find_if(result.warnings.begin(), result.warnings.end(), [](const auto& w) {
-        return w.find("excavates 1 whole block(s)") != std::string::npos;
-      });
-  EXPECT_NE(found, result.warnings.end());
-}
-
 } // namespace
 } // namespace nmm
