@@ -54,6 +54,7 @@ EXAMPLES = [
     ("16_jointed_double_cantilever/case.toml", 5),
     ("17_hertz_contact/case.toml", 1),
     ("18_road_cut_joint_sets/case.toml", 50),
+    ("19_bolted_tunnel_stages/case.toml", 30),
 ]
 
 

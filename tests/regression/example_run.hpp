@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -32,8 +33,13 @@ inline std::map<std::string, std::vector<double>> read_history_columns(const fs:
   while (std::getline(in, line)) {
     std::istringstream row(line);
     std::size_t k = 0;
-    for (std::string cell; std::getline(row, cell, ',') && k < names.size(); ++k)
-      columns[names[k]].push_back(std::stod(cell));
+    for (std::string cell; std::getline(row, cell, ',') && k < names.size(); ++k) {
+      // The `stage` column of a run in stages holds names: its numbers are none.
+      char* end = nullptr;
+      const double value = std::strtod(cell.c_str(), &end);
+      if (end != cell.c_str())
+        columns[names[k]].push_back(value);
+    }
   }
   return columns;
 }
